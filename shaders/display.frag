@@ -1,0 +1,37 @@
+#version 330 core
+// Display of the progressive accumulation: the CPU uploads radiance sums, the
+// mapping to the screen happens only here, so exposure and gamma never touch
+// the samples.
+in vec2 uv;
+out vec4 colour;
+
+uniform sampler2D sums;      // RGB radiance sums
+uniform sampler2D sums_sq;   // per-pixel sum of squared luminance
+uniform float spp;           // samples per pixel in `sums`
+uniform float exposure;      // linear scale; 1/255^2.2 is the report's mapping
+uniform float gamma;         // 2.2 in the report
+uniform int mode;            // 0 image, 1 relative standard error per pixel
+uniform vec3 lum_weights;    // as used for sums_sq
+
+// Blue -> cyan -> green -> yellow -> red, t in [0, 1].
+vec3 heat(float t) {
+  t = clamp(t, 0.0, 1.0);
+  return clamp(vec3(1.5 - abs(4.0 * t - 3.0),
+                    1.5 - abs(4.0 * t - 2.0),
+                    1.5 - abs(4.0 * t - 1.0)), 0.0, 1.0);
+}
+
+void main() {
+  vec3 mean = spp > 0.0 ? texture(sums, uv).rgb / spp : vec3(0.0);
+  if (mode == 1) {
+    // Standard error of the pixel mean over the mean, log scale: 0.1% blue,
+    // 100% red. Black where the pixel has no light to measure against.
+    float m = dot(mean, lum_weights);
+    float var = max(texture(sums_sq, uv).r / max(spp, 1.0) - m * m, 0.0);
+    float rel = sqrt(var / max(spp, 1.0)) / m;
+    colour = vec4(m > 0.0 ? heat((log(rel) / log(10.0) + 3.0) / 3.0) : vec3(0.0), 1.0);
+    return;
+  }
+  // SCENES.md: 8-bit value = min(255, L^(1/2.2)) = 255 * min(1, (L / 255^2.2)^(1/2.2)).
+  colour = vec4(min(pow(max(mean * exposure, 0.0), vec3(1.0 / gamma)), 1.0), 1.0);
+}

@@ -1,0 +1,229 @@
+#include "viewer/display.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+#include <unistd.h>
+
+#include <glad/gl.h>
+
+// A private copy of stb's PNG writer: static, so it never clashes with the
+// core's image writer.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace whisker {
+
+namespace fs = std::filesystem;
+
+std::string find_shader_dir() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("WHISKER_SHADERS")) candidates.emplace_back(env);
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    candidates.push_back(exe.parent_path() / "shaders");
+    candidates.push_back(exe.parent_path() / "../share/whisker/shaders");
+  }
+#ifdef WHISKER_SHADER_DIR
+  candidates.emplace_back(WHISKER_SHADER_DIR);
+#endif
+  for (const fs::path& dir : candidates)
+    if (fs::exists(dir / "display.frag", ec)) return dir.string();
+  return {};
+}
+
+static bool read_text(const fs::path& path, std::string& out) {
+  std::ifstream in(path);
+  if (!in) return false;
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  out = ss.str();
+  return true;
+}
+
+static GLuint compile(GLenum type, const std::string& src, const std::string& name,
+                      std::string& error) {
+  GLuint sh = glCreateShader(type);
+  const char* text = src.c_str();
+  glShaderSource(sh, 1, &text, nullptr);
+  glCompileShader(sh);
+  GLint ok = 0;
+  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(sh, sizeof log, nullptr, log);
+    error = name + ": " + log;
+    glDeleteShader(sh);
+    return 0;
+  }
+  return sh;
+}
+
+bool Display::init(std::string& error) {
+  const std::string dir = find_shader_dir();
+  if (dir.empty()) {
+    error = "display shaders not found (set WHISKER_SHADERS to the shaders/ folder)";
+    return false;
+  }
+  std::string vs_src, fs_src;
+  const fs::path vs_path = fs::path(dir) / "display.vert";
+  const fs::path fs_path = fs::path(dir) / "display.frag";
+  if (!read_text(vs_path, vs_src) || !read_text(fs_path, fs_src)) {
+    error = "cannot read " + vs_path.string() + " or " + fs_path.string();
+    return false;
+  }
+  GLuint vs = compile(GL_VERTEX_SHADER, vs_src, vs_path.string(), error);
+  if (!vs) return false;
+  GLuint fsh = compile(GL_FRAGMENT_SHADER, fs_src, fs_path.string(), error);
+  if (!fsh) {
+    glDeleteShader(vs);
+    return false;
+  }
+  program_ = glCreateProgram();
+  glAttachShader(program_, vs);
+  glAttachShader(program_, fsh);
+  glLinkProgram(program_);
+  glDeleteShader(vs);
+  glDeleteShader(fsh);
+  GLint ok = 0;
+  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
+    error = std::string("display shaders: ") + log;
+    return false;
+  }
+  loc_spp_ = glGetUniformLocation(program_, "spp");
+  loc_exposure_ = glGetUniformLocation(program_, "exposure");
+  loc_gamma_ = glGetUniformLocation(program_, "gamma");
+  loc_mode_ = glGetUniformLocation(program_, "mode");
+  loc_lum_ = glGetUniformLocation(program_, "lum_weights");
+  loc_sums_ = glGetUniformLocation(program_, "sums");
+  loc_sq_ = glGetUniformLocation(program_, "sums_sq");
+
+  glGenVertexArrays(1, &vao_);  // core profile: a bound VAO even with no attributes
+  for (GLuint* t : {&tex_, &tex_sq_}) {
+    glGenTextures(1, t);
+    glBindTexture(GL_TEXTURE_2D, *t);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  }
+  return true;
+}
+
+Display::~Display() {
+  if (tex_) glDeleteTextures(1, &tex_);
+  if (tex_sq_) glDeleteTextures(1, &tex_sq_);
+  if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (program_) glDeleteProgram(program_);
+}
+
+void Display::upload(const Snapshot& s, bool with_sq) {
+  if (s.width <= 0 || s.height <= 0 || s.sum.size() < std::size_t(s.width) * s.height * 3)
+    return;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  const bool resize = s.width != width_ || s.height != height_;
+  glBindTexture(GL_TEXTURE_2D, tex_);
+  if (resize)
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, s.width, s.height, 0, GL_RGB, GL_FLOAT,
+                 s.sum.data());
+  else
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RGB, GL_FLOAT,
+                    s.sum.data());
+  if (with_sq && s.sum_sq.size() >= std::size_t(s.width) * s.height) {
+    glBindTexture(GL_TEXTURE_2D, tex_sq_);
+    if (resize || !sq_valid_)
+      glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, s.width, s.height, 0, GL_RED, GL_FLOAT,
+                   s.sum_sq.data());
+    else
+      glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RED, GL_FLOAT,
+                      s.sum_sq.data());
+    sq_valid_ = true;
+  } else if (resize) {
+    sq_valid_ = false;
+  }
+  width_ = s.width;
+  height_ = s.height;
+}
+
+void Display::draw(const PixelRect& area, int framebuffer_height, float spp,
+                   const DisplayParams& p) {
+  if (!width_ || !height_ || area.w <= 0 || area.h <= 0) return;
+  // Magnified or 1:1 pixels stay crisp; a reduced image averages radiance.
+  const GLint filter = area.w < width_ ? GL_LINEAR : GL_NEAREST;
+  glViewport(area.x, framebuffer_height - area.y - area.h, area.w, area.h);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glUseProgram(program_);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, tex_sq_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, tex_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glUniform1i(loc_sums_, 0);
+  glUniform1i(loc_sq_, 1);
+  glUniform1f(loc_spp_, spp);
+  glUniform1f(loc_exposure_, p.exposure);
+  glUniform1f(loc_gamma_, p.gamma);
+  glUniform1i(loc_mode_, p.mode);
+  glUniform3f(loc_lum_, kLumWeights[0], kLumWeights[1], kLumWeights[2]);
+  glBindVertexArray(vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+PixelRect fit_image(const PixelRect& area, int image_w, int image_h) {
+  if (image_w <= 0 || image_h <= 0 || area.w <= 0 || area.h <= 0) return {};
+  const double sx = double(area.w) / image_w, sy = double(area.h) / image_h;
+  double s = std::min(sx, sy);
+  if (s >= 1.0) s = std::floor(s);
+  const int w = std::max(1, int(image_w * s)), h = std::max(1, int(image_h * s));
+  return {area.x + (area.w - w) / 2, area.y + (area.h - h) / 2, w, h};
+}
+
+std::vector<unsigned char> read_framebuffer(int width, int height) {
+  std::vector<unsigned char> rows(std::size_t(width) * height * 3);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rows.data());
+  // GL's row 0 is the bottom.
+  std::vector<unsigned char> out(rows.size());
+  const std::size_t stride = std::size_t(width) * 3;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(rows.data() + std::size_t(height - 1 - y) * stride, stride,
+                out.data() + std::size_t(y) * stride);
+  return out;
+}
+
+bool write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<unsigned char>& rgb) {
+  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+  if (!stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3)) {
+    std::remove(tmp.c_str());
+    return false;
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) std::remove(tmp.c_str());
+  return !ec;
+}
+
+}  // namespace whisker

@@ -1,0 +1,66 @@
+// The GL side of the window: the accumulation as a float texture, drawn by
+// shaders/display.{vert,frag}. Needs a current OpenGL 3.3 context.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/progressive.h"
+
+namespace whisker {
+
+// Luminance weights of Snapshot::sum_sq (Rec. 709).
+inline constexpr float kLumWeights[3] = {0.2126f, 0.7152f, 0.0722f};
+
+struct DisplayParams {
+  float exposure = 1.0f;  // linear scale
+  float gamma = 2.2f;
+  int mode = 0;           // 0 image, 1 relative standard error per pixel
+};
+
+// A rectangle in framebuffer pixels, origin at the top left.
+struct PixelRect {
+  int x = 0, y = 0, w = 0, h = 0;
+};
+
+class Display {
+ public:
+  // Compiles the shaders; false (with `error` set) if they cannot be found
+  // or do not compile.
+  bool init(std::string& error);
+  ~Display();
+
+  // Uploads the snapshot's sums (and sums of squares if `with_sq`); call only
+  // when the snapshot changed.
+  void upload(const Snapshot& s, bool with_sq);
+  void draw(const PixelRect& area, int framebuffer_height, float spp,
+            const DisplayParams& p);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool has_sq() const { return sq_valid_; }
+
+ private:
+  unsigned program_ = 0, vao_ = 0, tex_ = 0, tex_sq_ = 0;
+  int width_ = 0, height_ = 0;
+  bool sq_valid_ = false;
+  int loc_spp_ = -1, loc_exposure_ = -1, loc_gamma_ = -1, loc_mode_ = -1,
+      loc_lum_ = -1, loc_sums_ = -1, loc_sq_ = -1;
+};
+
+// Where the image goes inside `area`: 1:1 or an integer zoom if it fits
+// (pixel-exact, so a screenshot compares with the headless PNG), else scaled
+// down keeping its aspect; centred.
+PixelRect fit_image(const PixelRect& area, int image_w, int image_h);
+
+// Reads the back buffer (RGB, row 0 at the top).
+std::vector<unsigned char> read_framebuffer(int width, int height);
+// Writes 8-bit RGB as PNG through a temporary file renamed into place.
+bool write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<unsigned char>& rgb);
+
+// The folder holding display.vert/.frag: $WHISKER_SHADERS, next to the
+// executable, or the source tree's shaders/.
+std::string find_shader_dir();
+
+}  // namespace whisker

@@ -1,0 +1,187 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "viewer/viewer_state.h"
+
+namespace whisker {
+
+float report_exposure() { return 1.0f / std::pow(255.0f, 2.2f); }
+
+// 1234567 -> "1.23 M".
+static std::string human(double v) {
+  const char* units[] = {"", " k", " M", " G", " T"};
+  int u = 0;
+  while (std::fabs(v) >= 1000.0 && u < 4) {
+    v /= 1000.0;
+    ++u;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, u ? "%.2f%s" : "%.0f%s", v, units[u]);
+  return buf;
+}
+
+static void stats(ViewerState& s, double now) {
+  const Snapshot& sn = s.snap;
+  const bool stale = sn.generation != s.generation;
+  const char* status = s.paused ? "paused" : sn.done ? "done (target reached)" : "rendering";
+  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, status);
+  ImGui::Text("samples/pixel  %llu%s", (unsigned long long)sn.spp,
+              stale ? "  (previous edit)" : "");
+  const double secs = sn.seconds > 0.0 ? sn.seconds : 0.0;
+  ImGui::Text("passes  %llu   %.2f /s", (unsigned long long)sn.passes,
+              secs > 0.0 ? sn.passes / secs : 0.0);
+  ImGui::Text("rays/s  %s   render time %.1f s",
+              human(secs > 0.0 ? sn.rays / secs : 0.0).c_str(), secs);
+  ImGui::Text("since last change  %.1f s", now - s.last_change);
+  ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
+  if (sn.nan_count)
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "NaN/Inf samples dropped  %llu",
+                       (unsigned long long)sn.nan_count);
+  else
+    ImGui::Text("NaN/Inf samples dropped  0");
+  ImGui::Text("triangles  %zu", s.triangles);
+  ImGui::Text("UI frame  %.1f ms", s.frame_ms_avg);
+}
+
+static bool material_editor(Material& m, float* radius, float* inner_radius) {
+  static const char* kinds[] = {"diffuse", "mirror", "glass", "hollow glass"};
+  bool changed = false;
+  int kind = int(m.kind);
+  const int n_kinds = inner_radius ? 4 : 3;  // meshes have no hollow variant
+  if (ImGui::Combo("material", &kind, kinds, n_kinds)) {
+    m.kind = MaterialKind(kind);
+    // A hollow sphere needs a bubble: the report's 9.8 inside 10.
+    if (inner_radius && m.kind == MaterialKind::HollowGlass && radius &&
+        (*inner_radius <= 0.0f || *inner_radius >= *radius))
+      *inner_radius = 0.98f * *radius;
+    changed = true;
+  }
+  if (m.kind == MaterialKind::Diffuse)
+    changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
+  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+    changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f");
+  if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
+    changed |= ImGui::DragFloat("bubble radius", inner_radius, 0.02f, 0.0f,
+                                *radius, "%.2f");
+  return changed;
+}
+
+void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
+                double now, PanelRequests& req) {
+  ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(panel_w, window_h));
+  ImGui::Begin("Whisker", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
+
+  stats(s, now);
+  if (ImGui::Button(s.paused ? "Resume (Space)" : "Pause (Space)")) req.toggle_pause = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Restart (R)")) req.restart = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Save (S)")) req.save = true;
+  if (!s.message.empty()) {
+    if (s.message_is_error)
+      ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", s.message.c_str());
+    else
+      ImGui::TextWrapped("%s", s.message.c_str());
+  }
+
+  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
+    ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f");
+    static const char* modes[] = {"image", "noise (rel. std. error)"};
+    ImGui::Combo("view", &s.display.mode, modes, 2);
+    if (ImGui::Button("Report mapping")) {
+      s.exposure_stops = 0.0f;
+      s.display.gamma = 2.2f;
+      s.display.mode = 0;
+    }
+  }
+
+  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (ImGui::BeginCombo("bundled", s.scene_label.c_str())) {
+      for (const std::string& name : s.scene_names)
+        if (ImGui::Selectable(name.c_str(), name == s.scene_label)) req.load_scene = name;
+      ImGui::EndCombo();
+    }
+    const bool enter = ImGui::InputText("path", &s.path_field,
+                                        ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if ((ImGui::Button("Load") || enter) && !s.path_field.empty())
+      req.load_scene = s.path_field;
+  }
+
+  Scene& e = s.edited;
+  if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::DragFloat3("position", &e.light.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+    ImGui::DragFloat("intensity", &e.light.intensity, e.light.intensity * 0.005f + 1.0f,
+                     0.0f, 1e14f, "%.3g", ImGuiSliderFlags_Logarithmic);
+  }
+
+  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) {
+    RenderSettings& r = e.settings;
+    ImGui::Checkbox("Fresnel", &r.fresnel);
+    ImGui::SameLine();
+    ImGui::Checkbox("indirect", &r.indirect);
+    ImGui::SameLine();
+    ImGui::Checkbox("anti-aliasing", &r.aa);
+    ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
+    ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
+    if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
+    if (r.target_spp == 0) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(never stop)");
+    }
+    int threads = s.threads;
+    const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
+    if (ImGui::SliderInt("threads", &threads, 1, std::max(hw, s.threads)) &&
+        threads != s.threads)
+      req.threads = threads;
+  }
+
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::DragFloat3("eye", &e.camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+    ImGui::DragFloat3("look at", &e.camera.look_at.x, 0.25f, 0.0f, 0.0f, "%.2f");
+    ImGui::SliderFloat("fov (deg)", &e.camera.fov_deg, 5.0f, 150.0f, "%.1f");
+    if (ImGui::Button("Reset camera")) req.reset_camera = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Print JSON (C)")) req.print_camera = true;
+    ImGui::TextDisabled("left drag orbit, right/middle drag pan, wheel dolly");
+  }
+
+  if (ImGui::CollapsingHeader("Objects")) {
+    for (std::size_t i = 0; i < e.spheres.size(); ++i) {
+      SphereObject& sp = e.spheres[i];
+      ImGui::PushID(int(i));
+      const std::string label = sp.name.empty() ? "sphere " + std::to_string(i) : sp.name;
+      if (ImGui::TreeNode(label.c_str())) {
+        material_editor(sp.material, &sp.radius, &sp.inner_radius);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+    for (std::size_t i = 0; i < e.meshes.size(); ++i) {
+      MeshObject& m = e.meshes[i];
+      ImGui::PushID(int(1000000 + i));
+      const std::string label = m.name.empty() ? "mesh " + std::to_string(i) : m.name;
+      if (ImGui::TreeNode(label.c_str())) {
+        material_editor(m.material, nullptr, nullptr);
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+  }
+
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+}  // namespace whisker

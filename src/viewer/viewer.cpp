@@ -1,0 +1,446 @@
+// The window loop: GLFW events, ImGui panel, renderer snapshots to the
+// display. The loop never waits on the renderer: snapshot() returns at once.
+#include "viewer/viewer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <numeric>
+#include <string>
+
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include "geometry/mesh.h"
+#include "render/image_io.h"
+#include "render/progressive.h"
+#include "scene/scene_io.h"
+#include "viewer/camera_control.h"
+#include "viewer/display.h"
+#include "viewer/scene_diff.h"
+#include "viewer/viewer_state.h"
+
+namespace whisker {
+
+namespace {
+
+std::string g_glfw_error;
+
+void on_glfw_error(int code, const char* text) {
+  g_glfw_error = std::string(text ? text : "") + " (GLFW error " + std::to_string(code) + ")";
+}
+
+constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
+
+std::size_t count_triangles(const Scene& scene) {
+  std::size_t n = 0;
+  for (const MeshObject& m : scene.meshes)
+    if (m.mesh) n += m.mesh->triangles.size();
+  return n;
+}
+
+std::string scene_label_of(const Scene& scene, const std::string& path) {
+  if (!scene.name.empty()) return scene.name;
+  if (!path.empty()) return std::filesystem::path(path).stem().string();
+  return "scene";
+}
+
+// The loop's actions on the renderer; every restart goes through here.
+struct Controller {
+  ProgressiveRenderer& renderer;
+  ViewerState& s;
+
+  // Hands the panel's edits to the renderer if a value really changed.
+  void apply_edits(double now) {
+    switch (classify_change(s.applied, s.edited)) {
+      case SceneChange::None:
+        return;
+      case SceneChange::Settings:
+        s.generation = renderer.set_settings(s.edited.settings);
+        break;
+      case SceneChange::Scene:
+        s.generation = renderer.set_scene(s.edited);
+        break;
+    }
+    s.applied = s.edited;
+    s.last_change = now;
+  }
+
+  void restart(double now) {
+    s.generation = renderer.set_scene(s.applied);
+    s.last_change = now;
+  }
+
+  void load(const std::string& name_or_path, double now) {
+    try {
+      const std::filesystem::path path = resolve_scene(name_or_path);
+      Scene scene = load_scene(path);
+      s.initial = scene;
+      s.edited = scene;
+      s.applied = scene;
+      s.scene_label = scene_label_of(scene, path.string());
+      s.path_field = path.string();
+      s.triangles = count_triangles(scene);
+      s.generation = renderer.set_scene(scene);
+      s.last_change = now;
+      s.message = "loaded " + path.string();
+      s.message_is_error = false;
+    } catch (const std::exception& e) {
+      s.message = e.what();
+      s.message_is_error = true;
+    }
+  }
+
+  void save() {
+    const Snapshot& sn = s.snap;
+    if (sn.spp == 0) {
+      s.message = "nothing to save yet";
+      s.message_is_error = true;
+      return;
+    }
+    const std::string base = (std::filesystem::path(s.save_dir) /
+                              (s.scene_label + "-" + std::to_string(sn.spp) + "spp"))
+                                 .string();
+    try {
+      const Image img = Image::mean_of(sn);
+      write_png(base + ".png", img);
+      const std::string float_path = base + (have_exr() ? ".exr" : ".pfm");
+      write_float_image(float_path, img);
+      s.message = "saved " + base + ".png and " + float_path;
+      s.message_is_error = false;
+      std::printf("%s\n", s.message.c_str());
+      std::fflush(stdout);
+    } catch (const std::exception& e) {
+      s.message = std::string("save failed: ") + e.what();
+      s.message_is_error = true;
+    }
+  }
+};
+
+struct MouseCamera {
+  bool dragging[3] = {false, false, false};
+
+  // Left: orbit, right/middle: pan, wheel: dolly. A drag that starts over the
+  // panel belongs to ImGui (WantCaptureMouse) and never moves the camera.
+  void update(Camera& cam, float image_scale) {
+    ImGuiIO& io = ImGui::GetIO();
+    for (int b = 0; b < 3; ++b) {
+      if (ImGui::IsMouseClicked(b)) dragging[b] = !io.WantCaptureMouse;
+      if (!ImGui::IsMouseDown(b)) dragging[b] = false;
+    }
+    const ImVec2 d = io.MouseDelta;
+    const bool moved = (d.x != 0.0f || d.y != 0.0f) && std::isfinite(d.x) && std::isfinite(d.y);
+    if (moved && dragging[0]) orbit(cam, -d.x * 0.008f, -d.y * 0.008f);
+    if (moved && (dragging[1] || dragging[2]))
+      pan(cam, d.x / image_scale, d.y / image_scale);
+    if (io.MouseWheel != 0.0f && !io.WantCaptureMouse)
+      dolly(cam, std::pow(0.9f, io.MouseWheel));
+  }
+};
+
+void print_camera(const Camera& cam) {
+  std::printf("%s\n", camera_to_json(cam).c_str());
+  std::fflush(stdout);
+}
+
+struct FrameStats {
+  std::vector<float> work_ms, total_ms;
+  static float mean(const std::vector<float>& v) {
+    return v.empty() ? 0.0f : std::accumulate(v.begin(), v.end(), 0.0f) / v.size();
+  }
+  static float pct(std::vector<float> v, double p) {
+    if (v.empty()) return 0.0f;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, std::size_t(p * (v.size() - 1) + 0.5))];
+  }
+};
+
+// A summary next to a scripted screenshot (<screenshot>.json): where the
+// render area is, what was rendered, how fast the UI ran.
+void write_summary(const std::string& path, const PixelRect& r, const ViewerState& s,
+                   const FrameStats& f, int fb_w, int fb_h) {
+  FILE* out = std::fopen(path.c_str(), "w");
+  if (!out) return;
+  const double secs = s.snap.seconds;
+  std::fprintf(out,
+               "{\n  \"framebuffer\": [%d, %d],\n  \"render_rect\": [%d, %d, %d, %d],\n"
+               "  \"image\": [%d, %d],\n  \"scene\": \"%s\",\n  \"spp\": %llu,\n"
+               "  \"passes\": %llu,\n  \"generation\": %llu,\n  \"nan_count\": %llu,\n"
+               "  \"render_seconds\": %.4f,\n  \"passes_per_second\": %.4f,\n"
+               "  \"rays_per_second\": %.1f,\n  \"rel_std_error\": %.6g,\n"
+               "  \"ui_frames\": %zu,\n  \"ui_frame_ms_mean\": %.3f,\n"
+               "  \"ui_frame_ms_p95\": %.3f,\n  \"ui_frame_ms_max\": %.3f,\n"
+               "  \"ui_frame_work_ms_mean\": %.3f\n}\n",
+               fb_w, fb_h, r.x, r.y, r.w, r.h, s.snap.width, s.snap.height,
+               s.scene_label.c_str(), (unsigned long long)s.snap.spp,
+               (unsigned long long)s.snap.passes, (unsigned long long)s.snap.generation,
+               (unsigned long long)s.snap.nan_count, secs,
+               secs > 0 ? s.snap.passes / secs : 0.0, secs > 0 ? s.snap.rays / secs : 0.0,
+               s.rse, f.total_ms.size(), FrameStats::mean(f.total_ms),
+               FrameStats::pct(f.total_ms, 0.95),
+               f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end()),
+               FrameStats::mean(f.work_ms));
+  std::fclose(out);
+}
+
+}  // namespace
+
+bool display_available() {
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) return false;
+  glfwTerminate();
+  return true;
+}
+
+int run_viewer(const ViewerOptions& opt) {
+  glfwSetErrorCallback(on_glfw_error);
+  if (!glfwInit()) {
+    std::fprintf(stderr,
+                 "whisker: cannot open a window: no display (%s).\n"
+                 "  Render without a window with --headless.\n",
+                 g_glfw_error.c_str());
+    return 3;
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+
+  // The content scale (high-DPI) sizes the panel; the image keeps 1:1 pixels.
+  float cscale = 1.0f;
+  int max_w = 1 << 14, max_h = 1 << 14;
+  if (GLFWmonitor* mon = glfwGetPrimaryMonitor()) {
+    float sy = 1.0f;
+    glfwGetMonitorContentScale(mon, &cscale, &sy);
+    if (const GLFWvidmode* mode = glfwGetVideoMode(mon)) {
+      max_w = mode->width;
+      max_h = mode->height;
+    }
+  }
+  cscale = std::clamp(cscale, 1.0f, 4.0f);
+  const float panel_w = kPanelWidth * cscale;
+  const Camera& cam0 = opt.scene.camera;
+  int win_w = opt.width > 0 ? opt.width : int(cam0.width / cscale + panel_w);
+  int win_h = opt.height > 0 ? opt.height : std::max(int(cam0.height / cscale), int(720 * cscale));
+  win_w = std::min(win_w, max_w);
+  win_h = std::min(win_h, max_h);
+
+  GLFWwindow* window = glfwCreateWindow(win_w, win_h, "Whisker", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr,
+                 "whisker: cannot open an OpenGL 3.3 core window (%s).\n"
+                 "  Render without a window with --headless.\n",
+                 g_glfw_error.c_str());
+    glfwTerminate();
+    return 3;
+  }
+  glfwMakeContextCurrent(window);
+  if (!gladLoadGL(glfwGetProcAddress)) {
+    std::fprintf(stderr, "whisker: cannot load OpenGL 3.3 functions.\n"
+                         "  Render without a window with --headless.\n");
+    glfwDestroyWindow(window);
+    glfwTerminate();
+    return 3;
+  }
+  glfwSwapInterval(1);
+
+  int exit_code = 0;
+  {
+    Display display;
+    std::string error;
+    if (!display.init(error)) {
+      std::fprintf(stderr, "whisker: %s\n", error.c_str());
+      glfwDestroyWindow(window);
+      glfwTerminate();
+      return 1;
+    }
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;  // the panel is fixed; nothing to remember
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().ScaleAllSizes(cscale);
+    io.FontGlobalScale = cscale;
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330");
+
+    ViewerState s;
+    s.initial = s.applied = s.edited = opt.scene;
+    s.scene_label = scene_label_of(opt.scene, opt.scene_path);
+    s.path_field = opt.scene_path;
+    s.triangles = count_triangles(opt.scene);
+    try {
+      s.scene_names = list_scenes();
+    } catch (const std::exception& e) {
+      s.message = e.what();
+      s.message_is_error = true;
+    }
+
+    // A scripted run renders exactly `frames` passes of its last generation,
+    // so its screenshot compares with a headless render of as many passes.
+    if (opt.frames > 0) {
+      const int target = opt.frames * std::max(1, opt.scene.settings.spp);
+      int& t = s.initial.settings.target_spp;
+      t = t > 0 ? std::min(t, target) : target;
+      s.applied = s.edited = s.initial;
+    }
+
+    ProgressiveRenderer renderer(opt.threads);
+    s.threads = renderer.threads();
+    Controller ctl{renderer, s};
+    s.generation = renderer.set_scene(s.applied);
+    renderer.start();
+    s.last_change = glfwGetTime();
+
+    MouseCamera mouse;
+    FrameStats fstats;
+    std::size_t next_edit = 0;
+    double next_frame = 0.0;
+    bool finish = false;
+    std::uint64_t title_spp = ~0ull;
+
+    while (!glfwWindowShouldClose(window)) {
+      // Pace the UI to ~60 Hz without busy-waiting: the workers own the
+      // cores, and an input event wakes the loop at once.
+      const double before = glfwGetTime();
+      if (before < next_frame)
+        glfwWaitEventsTimeout(next_frame - before);
+      else
+        glfwPollEvents();
+      const double t0 = glfwGetTime();
+
+      if (renderer.snapshot(s.snap)) {
+        display.upload(s.snap, s.display.mode == 1);
+        s.rse = s.snap.relative_standard_error();
+      }
+      const bool idle = s.paused || (s.snap.done && s.snap.generation == s.generation);
+      next_frame = t0 + (idle ? 0.1 : 1.0 / 60.0);
+
+      // Scripted edits go through the same path as the panel's.
+      if (next_edit < opt.edits.size() && s.snap.generation == s.generation &&
+          (s.snap.passes >= std::uint64_t(std::max(0, opt.edits[next_edit].after_pass)) ||
+           s.snap.done)) {
+        if (opt.edits[next_edit].light_position)
+          s.edited.light.position = *opt.edits[next_edit].light_position;
+        ++next_edit;
+      }
+
+      int fb_w = 0, fb_h = 0;
+      glfwGetFramebufferSize(window, &fb_w, &fb_h);
+      int ww = 0, wh = 0;
+      glfwGetWindowSize(window, &ww, &wh);
+      const float fb_per_win = ww > 0 ? float(fb_w) / ww : 1.0f;
+
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+
+      PanelRequests req;
+      draw_panel(s, float(ww), float(wh), std::min(panel_w, float(ww)), t0, req);
+
+      // The render area is what the panel leaves, in framebuffer pixels.
+      const int panel_fb = int(std::lround(std::min(panel_w, float(ww)) * fb_per_win));
+      const PixelRect area{0, 0, std::max(0, fb_w - panel_fb), fb_h};
+      const int img_w = display.width() ? display.width() : s.applied.camera.width;
+      const int img_h = display.height() ? display.height() : s.applied.camera.height;
+      const PixelRect rect = fit_image(area, img_w, img_h);
+
+      // Keys act unless ImGui is taking text input.
+      if (!io.WantCaptureKeyboard) {
+        if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) req.toggle_pause = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) req.restart = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) req.save = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) req.print_camera = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) req.quit = true;
+      }
+      // Image pixels per window unit, so a pan drags the scene with the mouse.
+      const float image_scale = img_w > 0 ? rect.w / (fb_per_win * img_w) : 1.0f;
+      mouse.update(s.edited.camera, image_scale > 0.0f ? image_scale : 1.0f);
+
+      if (req.reset_camera) s.edited.camera = s.initial.camera;
+      if (req.threads > 0) {
+        renderer.set_threads(req.threads);
+        s.threads = renderer.threads();
+      }
+      if (!req.load_scene.empty()) ctl.load(req.load_scene, t0);
+      ctl.apply_edits(t0);
+      if (req.restart) ctl.restart(t0);
+      if (req.toggle_pause) {
+        s.paused = !s.paused;
+        renderer.set_paused(s.paused);
+      }
+      if (req.save) ctl.save();
+      if (req.print_camera) print_camera(s.applied.camera);
+      if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+      // Switching to the noise view needs the sums of squares on the GPU.
+      if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
+
+      if (opt.frames > 0 && next_edit == opt.edits.size() &&
+          s.snap.generation == s.generation &&
+          (s.snap.passes >= std::uint64_t(opt.frames) || s.snap.done))
+        finish = true;
+
+      if (s.snap.spp != title_spp) {
+        title_spp = s.snap.spp;
+        const std::string title = "Whisker - " + s.scene_label + " - " +
+                                  std::to_string(s.snap.spp) + " spp";
+        glfwSetWindowTitle(window, title.c_str());
+      }
+
+      ImGui::Render();
+      glViewport(0, 0, fb_w, fb_h);
+      glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+      s.display.exposure = report_exposure() * std::exp2(s.exposure_stops);
+      display.draw(rect, fb_h, float(s.snap.spp), s.display);
+      glViewport(0, 0, fb_w, fb_h);
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+      const double t_work = glfwGetTime();
+      if (finish && !opt.screenshot_path.empty()) {
+        const auto pixels = read_framebuffer(fb_w, fb_h);
+        if (!write_png_rgb8(opt.screenshot_path, fb_w, fb_h, pixels)) {
+          std::fprintf(stderr, "whisker: cannot write %s\n", opt.screenshot_path.c_str());
+          exit_code = 1;
+        }
+        write_summary(opt.screenshot_path + ".json", rect, s, fstats, fb_w, fb_h);
+      }
+      glfwSwapBuffers(window);
+      const double t1 = glfwGetTime();
+      fstats.work_ms.push_back(float((t_work - t0) * 1e3));
+      fstats.total_ms.push_back(float((t1 - t0) * 1e3));
+      // The panel shows a running mean over the last ~second of frames.
+      const float ms = float((t1 - t0) * 1e3);
+      s.frame_ms_avg = s.frame_ms_avg == 0.0f ? ms : 0.95f * s.frame_ms_avg + 0.05f * ms;
+      if (finish) break;
+    }
+
+    if (opt.frames > 0) {
+      std::fprintf(stderr,
+                   "viewer: %s, %llu passes, %llu spp, %.2f passes/s; UI %zu frames, "
+                   "mean %.2f ms, p95 %.2f ms\n",
+                   s.scene_label.c_str(), (unsigned long long)s.snap.passes,
+                   (unsigned long long)s.snap.spp,
+                   s.snap.seconds > 0 ? s.snap.passes / s.snap.seconds : 0.0,
+                   fstats.total_ms.size(), FrameStats::mean(fstats.total_ms),
+                   FrameStats::pct(fstats.total_ms, 0.95));
+    }
+    renderer.stop();
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return exit_code;
+}
+
+}  // namespace whisker

@@ -1,0 +1,62 @@
+// The viewer's state between frames and the ImGui panel that edits it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/progressive.h"
+#include "scene/scene.h"
+#include "viewer/display.h"
+
+namespace whisker {
+
+// What the panel (or a key) asked for this frame; the loop carries it out.
+struct PanelRequests {
+  bool toggle_pause = false;
+  bool restart = false;
+  bool save = false;
+  bool reset_camera = false;
+  bool print_camera = false;
+  bool quit = false;
+  std::string load_scene;  // name or path
+  int threads = 0;         // > 0: new thread count
+};
+
+struct ViewerState {
+  Scene initial;   // as loaded: what "reset camera" returns to
+  Scene applied;   // what the renderer was last given
+  Scene edited;    // the panel's working copy; compared with `applied`
+  std::string scene_label;
+  std::vector<std::string> scene_names;
+  std::string path_field;
+  std::string save_dir = ".";
+  std::string message;  // last save / load result shown in the panel
+  bool message_is_error = false;
+
+  int threads = 1;
+  bool paused = false;
+  std::uint64_t generation = 0;  // last generation asked for
+  double last_change = 0.0;      // glfwGetTime() of the last edit
+
+  Snapshot snap;
+  double rse = 0.0;  // relative standard error of snap
+  std::size_t triangles = 0;
+
+  float exposure_stops = 0.0f;  // relative to the report's mapping
+  DisplayParams display;
+
+  // UI frame times (ms), for the panel and scripted-run summaries.
+  std::vector<float> frame_ms;
+  float frame_ms_avg = 0.0f;
+};
+
+// Draws the panel at the right edge of a window of `window_w` x `window_h`
+// (window coordinates), `panel_w` wide; edits state.edited and fills `req`.
+void draw_panel(ViewerState& state, float window_w, float window_h, float panel_w,
+                double now, PanelRequests& req);
+
+// The report's display mapping as an exposure: L / 255^2.2.
+float report_exposure();
+
+}  // namespace whisker
