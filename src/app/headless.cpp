@@ -1,0 +1,107 @@
+#include "app/headless.h"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "render/image_io.h"
+#include "render/progressive.h"
+
+namespace whisker {
+
+namespace {
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw ImageError(path + ": cannot write");
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw ImageError(path + ": cannot write");
+  }
+}
+
+}  // namespace
+
+int run_headless(const HeadlessOptions& o) {
+  Scene scene = o.scene;
+  const std::uint64_t target = std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
+  scene.settings.target_spp = int(target);
+
+  ProgressiveRenderer renderer(o.threads);
+  const auto gen = renderer.set_scene(scene);
+  renderer.start();
+
+  const bool tty = o.progress && ::isatty(2);
+  const auto t0 = std::chrono::steady_clock::now();
+  Snapshot snap;
+  bool shown = false;
+  for (;;) {
+    // Poll for progress; the wait itself is on the renderer's condition.
+    if (!tty) {
+      renderer.wait_for(gen, target);
+      renderer.snapshot(snap);
+      break;
+    }
+    renderer.snapshot(snap);
+    if (snap.generation == gen && (snap.spp >= target || snap.done)) break;
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (el > 2.0) {
+      const double frac = double(snap.spp) / double(target);
+      std::fprintf(stderr, "\r%s: %llu/%llu spp  %.1f s  eta %.1f s   ", scene.name.c_str(),
+                   (unsigned long long)snap.spp, (unsigned long long)target, el,
+                   frac > 0 ? el / frac - el : 0.0);
+      shown = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  renderer.stop();
+  if (shown) std::fprintf(stderr, "\r%*s\r", 70, "");
+
+  const double secs = snap.seconds;
+  const double pixels = double(snap.width) * snap.height;
+  const double paths = pixels * double(snap.spp);
+  const Image img = Image::mean_of(snap);
+  if (!o.out_png.empty()) write_png(o.out_png, img);
+  if (!o.out_float.empty()) write_float_image(o.out_float, img);
+
+  std::printf(
+      "%s %dx%d: %llu spp in %.3f s, %.3g paths/s, %.3g rays/s, %llu NaN/Inf dropped, %d threads",
+      scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
+      secs > 0 ? paths / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
+      (unsigned long long)snap.nan_count, renderer.threads());
+  if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
+  if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
+  std::printf("\n");
+
+  if (!o.stats_json.empty()) {
+    const RenderSettings& s = scene.settings;
+    nlohmann::json j = {
+        {"scene", scene.name},
+        {"width", snap.width},
+        {"height", snap.height},
+        {"spp", snap.spp},
+        {"passes", snap.passes},
+        {"seconds", secs},
+        {"paths_per_s", secs > 0 ? paths / secs : 0.0},
+        {"rays", snap.rays},
+        {"rays_per_s", secs > 0 ? double(snap.rays) / secs : 0.0},
+        {"nan_count", snap.nan_count},
+        {"threads", renderer.threads()},
+        {"relative_standard_error", snap.relative_standard_error()},
+        {"settings",
+         {{"spp_per_pass", s.spp}, {"max_depth", s.max_depth}, {"indirect", s.indirect},
+          {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)}}}};
+    write_text_atomically(o.stats_json, j.dump(2) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace whisker

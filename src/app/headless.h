@@ -1,0 +1,23 @@
+// Headless mode: the same progressive renderer, N passes, images and stats.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace whisker {
+
+struct HeadlessOptions {
+  Scene scene;
+  int frames = 1;     // passes of scene.settings.spp samples per pixel
+  int threads = 0;    // 0 = all hardware threads
+  std::string out_png;
+  std::string out_float;  // .pfm or .exr
+  std::string stats_json;
+  bool progress = true;   // a progress line on stderr when it is a terminal
+};
+
+// Renders and writes the outputs; returns the process exit code.
+int run_headless(const HeadlessOptions& options);
+
+}  // namespace whisker

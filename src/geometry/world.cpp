@@ -1,0 +1,111 @@
+#include "geometry/world.h"
+
+#include <array>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/mesh.h"
+
+namespace whisker {
+
+World::World(const Scene& scene, const World* reuse) {
+  for (const auto& s : scene.spheres) {
+    if (s.material.kind == MaterialKind::HollowGlass) {
+      // Report section 2: a glass ball holding an air bubble whose normal is inverted.
+      Material glass = s.material;
+      glass.kind = MaterialKind::Glass;
+      spheres_.push_back({s.center, s.radius, false});
+      sphere_material_.push_back(glass);
+      spheres_.push_back({s.center, s.inner_radius, true});
+      sphere_material_.push_back(glass);
+    } else {
+      spheres_.push_back({s.center, s.radius, false});
+      sphere_material_.push_back(s.material);
+    }
+  }
+  std::vector<const TriangleMesh*> sources;
+  for (const auto& m : scene.meshes) {
+    mesh_material_.push_back(m.material);
+    mesh_vertex_normals_.push_back(m.vertex_normals);
+    sources.push_back(m.mesh.get());
+  }
+  if (sources.empty()) return;
+  if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
+      reuse->mesh_->accel == scene.settings.accel) {
+    mesh_ = reuse->mesh_;
+    return;
+  }
+  auto data = std::make_shared<MeshData>();
+  data->sources = sources;
+  data->accel = scene.settings.accel;
+  std::vector<Triangle> tris;
+  bool any_normals = false;
+  for (const auto& m : scene.meshes) any_normals |= m.vertex_normals && !m.mesh->normals.empty();
+  for (std::uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    const TriangleMesh& mesh = *scene.meshes[mi].mesh;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const glm::uvec3 idx = mesh.triangles[t];
+      const Triangle tri{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+      tris.push_back(tri);
+      data->object.push_back(mi);
+      const vec3 n = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+      data->ng.push_back(n);
+      if (any_normals) {
+        std::array<vec3, 3> c{n, n, n};
+        if (!mesh.normal_idx.empty()) {
+          const glm::uvec3 ni = mesh.normal_idx[t];
+          c = {glm::normalize(mesh.normals[ni.x]), glm::normalize(mesh.normals[ni.y]),
+               glm::normalize(mesh.normals[ni.z])};
+        }
+        data->ns.push_back(c);
+      }
+    }
+  }
+  data->bvh = Bvh::build(std::move(tris), scene.settings.accel);
+  mesh_ = std::move(data);
+}
+
+bool World::intersect(const Ray& ray, SurfaceHit& out) const {
+  Hit hit;
+  hit.t = ray.tmax;
+  for (std::uint32_t i = 0; i < spheres_.size(); ++i) {
+    const float t = intersect_sphere(spheres_[i], Ray{ray.o, ray.d, ray.tmin, hit.t});
+    if (t < hit.t) {
+      hit.t = t;
+      hit.kind = PrimKind::Sphere;
+      hit.prim = i;
+    }
+  }
+  if (mesh_) mesh_->bvh.intersect(ray, hit);
+  if (!hit.valid()) return false;
+  out.t = hit.t;
+  if (hit.kind == PrimKind::Sphere) {
+    const Sphere& s = spheres_[hit.prim];
+    out.p = sphere_hit_point(s, ray, hit.t);
+    out.ng = sphere_normal(s, out.p);
+    out.ns = out.ng;
+    out.material = &sphere_material_[hit.prim];
+  } else {
+    const MeshData& m = *mesh_;
+    const std::uint32_t obj = m.object[hit.prim];
+    // Barycentric interpolation of the vertices would be more exact than
+    // o + t d for long rays; the ray offset's 256-ULP margin covers either.
+    out.p = ray.o + hit.t * ray.d;
+    out.ng = m.ng[hit.prim];
+    out.ns = out.ng;
+    if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
+      const auto& c = m.ns[hit.prim];
+      out.ns = glm::normalize((1.0f - hit.u - hit.v) * c[0] + hit.u * c[1] + hit.v * c[2]);
+    }
+    out.material = &mesh_material_[obj];
+  }
+  return true;
+}
+
+bool World::occluded(const Ray& ray) const {
+  for (const auto& s : spheres_)
+    if (intersect_sphere(s, ray) < kInf) return true;
+  return mesh_ && mesh_->bvh.occluded(ray);
+}
+
+}  // namespace whisker

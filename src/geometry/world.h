@@ -1,0 +1,56 @@
+// Everything a ray can hit in one scene: the spheres and the triangles of all
+// meshes (in one BVH), with each primitive's material.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geometry/bvh.h"
+#include "geometry/ray.h"
+#include "geometry/sphere.h"
+#include "scene/scene.h"
+
+namespace whisker {
+
+struct SurfaceHit {
+  float t = kInf;
+  vec3 p{0.0f};   // hit point (on the surface to about one ULP)
+  vec3 ng{0.0f};  // unit geometric normal (outward; inward for inverted shells)
+  vec3 ns{0.0f};  // unit shading normal (== ng unless vertex normals are on)
+  const Material* material = nullptr;
+};
+
+class World {
+ public:
+  World() = default;
+  // Expands hollow spheres into their two glass shells, gathers triangles.
+  // `reuse` may hold a World built from the same meshes: its BVH is shared.
+  explicit World(const Scene& scene, const World* reuse = nullptr);
+
+  bool intersect(const Ray& ray, SurfaceHit& out) const;
+  bool occluded(const Ray& ray) const;
+
+  std::size_t sphere_count() const { return spheres_.size(); }
+  std::size_t triangle_count() const { return mesh_ ? mesh_->bvh.triangle_count() : 0; }
+  const Bvh* bvh() const { return mesh_ ? &mesh_->bvh : nullptr; }
+
+ private:
+  // Triangle data, immutable once built and shared between Worlds.
+  struct MeshData {
+    Bvh bvh;
+    std::vector<std::uint32_t> object;    // per triangle: mesh index in the scene
+    std::vector<vec3> ng;                 // per triangle: unit geometric normal
+    std::vector<std::array<vec3, 3>> ns;  // per triangle corner normals (if any mesh uses them)
+    std::vector<const TriangleMesh*> sources;  // identity of the meshes it was built from
+    AccelKind accel = AccelKind::Sah;
+  };
+  std::vector<Sphere> spheres_;
+  std::vector<Material> sphere_material_;
+  std::vector<Material> mesh_material_;
+  std::vector<bool> mesh_vertex_normals_;
+  std::shared_ptr<const MeshData> mesh_;
+};
+
+}  // namespace whisker

@@ -1,0 +1,37 @@
+// Camera rays, as in SCENES.md "Conventions".
+#pragma once
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "geometry/ray.h"
+#include "scene/scene.h"
+
+namespace whisker {
+
+struct CameraFrame {
+  vec3 origin, right, up, forward;
+  float half_w, half_h, focal;  // focal = W / (2 tan(fov/2)), in pixels
+
+  explicit CameraFrame(const Camera& c)
+      : origin(c.position),
+        forward(glm::normalize(c.look_at - c.position)),
+        half_w(0.5f * float(c.width)),
+        half_h(0.5f * float(c.height)),
+        focal(float(c.width) / (2.0f * std::tan(glm::radians(c.fov_deg) * 0.5f))) {
+    right = glm::normalize(glm::cross(forward, c.up));
+    up = glm::cross(right, forward);
+  }
+
+  // Pixel (row i from the top, column j) with offset (dx, dy) in pixels:
+  // direction (j - W/2 + 0.5 + dx, H/2 - i - 0.5 - dy, -focal) in camera space.
+  Ray ray(int i, int j, float dx, float dy) const {
+    const float x = float(j) - half_w + 0.5f + dx;
+    const float y = half_h - float(i) - 0.5f - dy;
+    return Ray{origin, glm::normalize(x * right + y * up + focal * forward), 0.0f, kInf};
+  }
+};
+
+}  // namespace whisker

@@ -1,0 +1,162 @@
+#include "render/image_io.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include <stb/stb_image_write.h>
+#include <unistd.h>
+
+#ifdef WHISKER_HAVE_OPENEXR
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfOutputFile.h>
+#endif
+
+namespace whisker {
+
+namespace fs = std::filesystem;
+
+Image Image::mean_of(const Snapshot& s) {
+  Image img;
+  img.width = s.width;
+  img.height = s.height;
+  img.rgb.resize(s.sum.size());
+  const float inv = s.spp ? 1.0f / float(s.spp) : 0.0f;
+  for (std::size_t k = 0; k < s.sum.size(); ++k) img.rgb[k] = s.sum[k] * inv;
+  return img;
+}
+
+unsigned char to_srgb8(float radiance) {
+  // SCENES.md: min(255, L^(1/2.2)); negative or NaN never happen in the
+  // buffer, but clamp them to black rather than trust that.
+  if (!(radiance > 0.0f)) return 0;
+  const float v = std::pow(radiance, 1.0f / 2.2f);
+  return v >= 255.0f ? 255 : static_cast<unsigned char>(v);
+}
+
+namespace {
+
+// Writes through `writer(tmp_path)` then renames onto `path`.
+void write_atomically(const std::string& path, const std::function<bool(const std::string&)>& writer) {
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    throw ImageError(path + ": cannot write: folder " + dir.string() + " does not exist");
+  if (fs::is_directory(target, ec)) throw ImageError(path + ": cannot write: is a directory");
+  const std::string tmp = (dir / ("." + target.filename().string() + ".tmp-" +
+                                  std::to_string(::getpid()))).string();
+  if (!writer(tmp)) {
+    const std::string why = errno ? std::strerror(errno) : "write failed";
+    fs::remove(tmp, ec);
+    throw ImageError(path + ": cannot write: " + why);
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw ImageError(path + ": cannot write: " + ec.message());
+  }
+}
+
+void check(const Image& img, const std::string& path) {
+  if (img.width <= 0 || img.height <= 0 ||
+      img.rgb.size() != std::size_t(img.width) * img.height * 3)
+    throw ImageError(path + ": empty or malformed image");
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& img) {
+  check(img, path);
+  std::vector<unsigned char> px(img.rgb.size());
+  std::transform(img.rgb.begin(), img.rgb.end(), px.begin(), to_srgb8);
+  write_atomically(path, [&](const std::string& tmp) {
+    errno = 0;
+    return stbi_write_png(tmp.c_str(), img.width, img.height, 3, px.data(), img.width * 3) != 0;
+  });
+}
+
+void write_pfm(const std::string& path, const Image& img) {
+  check(img, path);
+  write_atomically(path, [&](const std::string& tmp) {
+    errno = 0;
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) return false;
+    // PFM: "PF", size, negative scale = little endian; rows bottom to top.
+    out << "PF\n" << img.width << " " << img.height << "\n-1.0\n";
+    for (int y = img.height - 1; y >= 0; --y)
+      out.write(reinterpret_cast<const char*>(&img.rgb[std::size_t(y) * img.width * 3]),
+                std::streamsize(sizeof(float)) * img.width * 3);
+    out.close();
+    return bool(out);
+  });
+}
+
+Image read_pfm(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ImageError(path + ": cannot open");
+  std::string magic;
+  Image img;
+  float scale = 0.0f;
+  in >> magic >> img.width >> img.height >> scale;
+  in.get();
+  if (magic != "PF" || img.width <= 0 || img.height <= 0 || scale >= 0.0f)
+    throw ImageError(path + ": not a little-endian RGB PFM file");
+  img.rgb.resize(std::size_t(img.width) * img.height * 3);
+  for (int y = img.height - 1; y >= 0; --y)
+    in.read(reinterpret_cast<char*>(&img.rgb[std::size_t(y) * img.width * 3]),
+            std::streamsize(sizeof(float)) * img.width * 3);
+  if (!in) throw ImageError(path + ": truncated PFM file");
+  return img;
+}
+
+bool have_exr() {
+#ifdef WHISKER_HAVE_OPENEXR
+  return true;
+#else
+  return false;
+#endif
+}
+
+void write_exr(const std::string& path, const Image& img) {
+  check(img, path);
+#ifdef WHISKER_HAVE_OPENEXR
+  write_atomically(path, [&](const std::string& tmp) {
+    errno = 0;
+    try {
+      Imf::Header header(img.width, img.height);
+      for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+      Imf::OutputFile file(tmp.c_str(), header);
+      Imf::FrameBuffer fb;
+      char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
+      const std::size_t xs = 3 * sizeof(float), ys = xs * img.width;
+      fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+      fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+      fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+      file.setFrameBuffer(fb);
+      file.writePixels(img.height);
+      return true;
+    } catch (const std::exception& e) {
+      return false;
+    }
+  });
+#else
+  throw ImageError(path + ": this build has no OpenEXR support; write a .pfm instead");
+#endif
+}
+
+void write_float_image(const std::string& path, const Image& img) {
+  const std::string ext = fs::path(path).extension().string();
+  if (ext == ".pfm") return write_pfm(path, img);
+  if (ext == ".exr") return write_exr(path, img);
+  throw ImageError(path + ": unknown float image type \"" + ext + "\" (use .pfm or .exr)");
+}
+
+}  // namespace whisker

@@ -1,0 +1,37 @@
+// Writing images: PNG (the report's mapping), PFM and EXR (linear radiance).
+// Every writer goes through a temporary file renamed into place, so an
+// interrupted run never leaves a broken image.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/progressive.h"
+
+namespace whisker {
+
+struct ImageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Linear RGB radiance, row 0 at the top.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;
+  static Image mean_of(const Snapshot& s);
+};
+
+// The report's display mapping: min(255, L^(1/2.2)) with L the radiance
+// (light intensity applied), SCENES.md "Pixel value shown".
+unsigned char to_srgb8(float radiance);
+
+void write_png(const std::string& path, const Image& img);
+void write_pfm(const std::string& path, const Image& img);
+void write_exr(const std::string& path, const Image& img);  // throws if built without OpenEXR
+// By extension: .pfm or .exr.
+void write_float_image(const std::string& path, const Image& img);
+Image read_pfm(const std::string& path);
+bool have_exr();
+
+}  // namespace whisker

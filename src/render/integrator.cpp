@@ -1,0 +1,126 @@
+#include "render/integrator.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/offset.h"
+
+namespace whisker {
+
+namespace {
+constexpr float kPi = 3.14159265358979323846f;
+
+// An orthonormal basis around unit n (Duff et al., "Building an Orthonormal
+// Basis, Revisited", JCGT 2017).
+void basis(const vec3& n, vec3& b1, vec3& b2) {
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  b1 = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  b2 = vec3(b, sign + n.y * n.y * a, -n.y);
+}
+}  // namespace
+
+vec3 reflect(const vec3& d, const vec3& n) { return d - 2.0f * glm::dot(n, d) * n; }
+
+bool refract(const vec3& d, const vec3& n, float eta, vec3& out) {
+  // Snell-Descartes (report section 2): tangential part scales by eta.
+  const float cos_i = -glm::dot(n, d);
+  const float k = 1.0f - eta * eta * (1.0f - cos_i * cos_i);
+  if (k < 0.0f) return false;
+  out = glm::normalize(eta * d + (eta * cos_i - std::sqrt(k)) * n);
+  return true;
+}
+
+float schlick(float cos_i, float n1, float n2) {
+  // R = R0 + (1 - R0)(1 - |cos|)^5, R0 = ((n1 - n2)/(n1 + n2))^2 (SCENES.md).
+  const float r0 = (n1 - n2) / (n1 + n2);
+  const float R0 = r0 * r0;
+  const float c = 1.0f - std::fabs(cos_i);
+  return R0 + (1.0f - R0) * c * c * c * c * c;
+}
+
+vec3 cosine_direction(const vec3& n, float u1, float u2) {
+  // Cosine-weighted hemisphere (report section 3, Scene::random_cos):
+  // x = cos(2 pi u1) sqrt(1 - u2), y = sin(2 pi u1) sqrt(1 - u2), z = sqrt(u2).
+  const float r = std::sqrt(1.0f - u2);
+  const float phi = 2.0f * kPi * u1;
+  vec3 b1, b2;
+  basis(n, b1, b2);
+  return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(u2) * n);
+}
+
+vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
+              Ray ray, Rng& rng, PathStats& stats) {
+  vec3 L(0.0f), beta(1.0f);
+  // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
+  for (int depth = 0; depth <= settings.max_depth; ++depth) {
+    SurfaceHit h;
+    ++stats.rays;
+    if (!world.intersect(ray, h)) break;
+    const Material& m = *h.material;
+    switch (m.kind) {
+      case MaterialKind::Diffuse: {
+        // Shade the side the ray arrived from.
+        const vec3 ng = glm::dot(h.ng, ray.d) < 0.0f ? h.ng : -h.ng;
+        const vec3 ns = glm::dot(h.ns, ng) >= 0.0f ? h.ns : -h.ns;
+        // Direct light, report section 2: I/(4 pi d^2) * rho/pi * <N, w_i> * V.
+        const vec3 to_light = light.position - h.p;
+        const float d2 = glm::dot(to_light, to_light);
+        const vec3 wi = to_light / std::sqrt(d2);
+        const float cos_s = glm::dot(ns, wi);
+        // The geometric test keeps vertex normals from lighting the far side.
+        if (cos_s > 0.0f && glm::dot(ng, wi) > 0.0f) {
+          ++stats.rays;
+          if (!world.occluded(spawn_shadow_ray(h.p, ng, light.position)))
+            L += beta * m.albedo * (light.intensity * cos_s / (4.0f * kPi * kPi * d2));
+        }
+        if (!settings.indirect) return L;
+        // Indirect, report section 3: cosine sampling makes the estimator rho * L_in.
+        beta *= m.albedo;
+        if (beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
+        const float u1 = rng.uniform(), u2 = rng.uniform();
+        ray = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
+        break;
+      }
+      case MaterialKind::Mirror:
+        ray = spawn_ray(h.p, h.ng, reflect(ray.d, h.ns));
+        break;
+      case MaterialKind::Glass:
+      case MaterialKind::HollowGlass: {
+        // Entering or leaving: the normal is flipped to face the ray and the
+        // indices swapped (an inverted inner shell thus reads glass -> air).
+        vec3 n = h.ng;
+        float n1 = 1.0f, n2 = m.ior;
+        if (glm::dot(ray.d, n) > 0.0f) {
+          n = -n;
+          std::swap(n1, n2);
+        }
+        vec3 t;
+        bool reflected = !refract(ray.d, n, n1 / n2, t);  // total internal reflection
+        if (!reflected && settings.fresnel)
+          reflected = rng.uniform() < schlick(glm::dot(ray.d, n), n1, n2);
+        ray = spawn_ray(h.p, h.ng, reflected ? reflect(ray.d, n) : t);
+        break;
+      }
+    }
+  }
+  return L;
+}
+
+vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
+                  Rng& rng, PathStats& stats) {
+  float dx = 0.0f, dy = 0.0f;
+  if (scene.settings.aa) {
+    // Box-Muller (report section 3): two independent N(0, 0.5^2) offsets in pixels.
+    const float u1 = 1.0f - rng.uniform();  // (0, 1]: log stays finite
+    const float u2 = rng.uniform();
+    const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
+    dx = r * std::cos(2.0f * kPi * u2);
+    dy = r * std::sin(2.0f * kPi * u2);
+  }
+  return radiance(world, scene.light, scene.settings, cam.ray(i, j, dx, dy), rng, stats);
+}
+
+}  // namespace whisker

@@ -1,0 +1,290 @@
+#include "render/progressive.h"
+
+#include <algorithm>
+#include <barrier>
+#include <chrono>
+#include <cmath>
+
+#include "geometry/world.h"
+#include "render/camera.h"
+#include "render/integrator.h"
+#include "render/sampler.h"
+
+namespace whisker {
+
+namespace {
+constexpr int kTile = 32;
+using Clock = std::chrono::steady_clock;
+
+float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+}  // namespace
+
+double Snapshot::relative_standard_error() const {
+  if (spp < 2 || width <= 0 || height <= 0) return INFINITY;
+  const double n = double(spp);
+  double var_sum = 0.0, mean_sum = 0.0;
+  const std::size_t pixels = std::size_t(width) * height;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    const double m = (0.2126 * sum[3 * p] + 0.7152 * sum[3 * p + 1] + 0.0722 * sum[3 * p + 2]) / n;
+    const double var = std::max(0.0, sum_sq[p] / n - m * m) * n / (n - 1.0);  // sample variance
+    var_sum += var / n;                                                     // of the mean
+    mean_sum += m;
+  }
+  return mean_sum > 0.0 ? std::sqrt(var_sum / double(pixels)) / (mean_sum / double(pixels))
+                        : INFINITY;
+}
+
+// The state of the generation being rendered; touched by workers during a
+// pass and by thread 0 between passes only.
+struct ProgressiveRenderer::Job {
+  explicit Job(int threads) : sync(threads) {}
+
+  std::barrier<> sync;
+  bool keep_going = true;
+
+  Scene scene;
+  World world;
+  std::unique_ptr<CameraFrame> cam;
+  std::uint64_t generation = 0;  // 0: nothing adopted yet
+  int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+  std::vector<double> acc;     // RGB sums, double so millions of samples keep their digits
+  std::vector<double> acc_sq;  // luminance sums of squares
+  std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
+  double seconds = 0.0;
+
+  // this pass
+  std::uint64_t sample_base = 0;
+  int pass_spp = 0;
+  Clock::time_point pass_start;
+  std::atomic<int> next_tile{0};
+  std::atomic<std::uint64_t> pass_nans{0}, pass_rays{0};
+  std::atomic<bool> aborted{false};
+};
+
+ProgressiveRenderer::ProgressiveRenderer(int threads) {
+  threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+ProgressiveRenderer::~ProgressiveRenderer() { stop(); }
+
+std::uint64_t ProgressiveRenderer::set_scene(const Scene& scene) {
+  std::lock_guard lock(pending_mutex_);
+  pending_scene_ = scene;
+  ++pending_generation_;
+  pending_cv_.notify_all();
+  return pending_generation_;
+}
+
+std::uint64_t ProgressiveRenderer::set_settings(const RenderSettings& settings) {
+  std::lock_guard lock(pending_mutex_);
+  pending_scene_.settings = settings;
+  ++pending_generation_;
+  pending_cv_.notify_all();
+  return pending_generation_;
+}
+
+Scene ProgressiveRenderer::current_scene() const {
+  std::lock_guard lock(pending_mutex_);
+  return pending_scene_;
+}
+
+void ProgressiveRenderer::start() {
+  if (!pool_.empty()) return;
+  {
+    std::lock_guard lock(pending_mutex_);
+    quit_ = false;
+  }
+  job_ = std::make_unique<Job>(threads_);
+  running_ = true;
+  for (int i = 0; i < threads_; ++i) pool_.emplace_back([this, i] { worker_main(i); });
+}
+
+void ProgressiveRenderer::stop() {
+  if (pool_.empty()) return;
+  {
+    std::lock_guard lock(pending_mutex_);
+    quit_ = true;
+    pending_cv_.notify_all();
+  }
+  for (auto& t : pool_) t.join();
+  pool_.clear();
+  job_.reset();
+  // Wake waiters: the renderer is stopped.
+  std::lock_guard lock(publish_mutex_);
+  running_ = false;
+  publish_cv_.notify_all();
+}
+
+void ProgressiveRenderer::set_paused(bool paused) {
+  std::lock_guard lock(pending_mutex_);
+  paused_ = paused;
+  pending_cv_.notify_all();
+}
+
+void ProgressiveRenderer::set_threads(int threads) {
+  const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  if (n == threads_) return;
+  const bool running = !pool_.empty();
+  stop();
+  threads_ = n;
+  if (running) {
+    // A fresh job adopts the pending scene again, from scratch.
+    std::lock_guard lock(pending_mutex_);
+    ++pending_generation_;
+  }
+  if (running) start();
+}
+
+bool ProgressiveRenderer::snapshot(Snapshot& out) const {
+  std::lock_guard lock(publish_mutex_);
+  if (published_.version == out.version) return false;
+  out = published_;
+  return true;
+}
+
+bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
+  std::unique_lock lock(publish_mutex_);
+  publish_cv_.wait(lock, [&] {
+    if (!running_) return true;
+    return published_.generation > gen ||
+           (published_.generation == gen && (published_.spp >= spp || published_.done));
+  });
+  return published_.generation == gen && (published_.spp >= spp || published_.done);
+}
+
+void ProgressiveRenderer::worker_main(int index) {
+  Job& job = *job_;
+  for (;;) {
+    if (index == 0) job.keep_going = begin_pass();
+    job.sync.arrive_and_wait();
+    if (!job.keep_going) return;
+    run_tiles();
+    job.sync.arrive_and_wait();
+    if (index == 0) end_pass();
+  }
+}
+
+bool ProgressiveRenderer::begin_pass() {
+  Job& job = *job_;
+  std::unique_lock lock(pending_mutex_);
+  for (;;) {
+    if (quit_) return false;
+    const bool fresh = pending_generation_ != job.generation;
+    const int target = fresh ? pending_scene_.settings.target_spp : job.scene.settings.target_spp;
+    const bool done = !fresh && target > 0 && job.spp_done >= std::uint64_t(target);
+    if (!paused_ && pending_generation_ != 0 && (fresh || !done)) break;
+    pending_cv_.wait(lock);
+  }
+  if (pending_generation_ != job.generation) {
+    // Adopt the new generation: everything accumulated so far is thrown away.
+    job.scene = pending_scene_;
+    job.generation = pending_generation_;
+    lock.unlock();
+    // Spheres and materials are rebuilt (cheap); the BVH is reused when the
+    // meshes and the accel kind are the same.
+    job.world = World(job.scene, &job.world);
+    job.cam = std::make_unique<CameraFrame>(job.scene.camera);
+    job.width = job.scene.camera.width;
+    job.height = job.scene.camera.height;
+    job.tiles_x = (job.width + kTile - 1) / kTile;
+    job.tiles_y = (job.height + kTile - 1) / kTile;
+    const std::size_t pixels = std::size_t(job.width) * job.height;
+    job.acc.assign(pixels * 3, 0.0);
+    job.acc_sq.assign(pixels, 0.0);
+    job.spp_done = job.passes = job.nan_count = job.rays = 0;
+    job.seconds = 0.0;
+  } else {
+    lock.unlock();
+  }
+  const RenderSettings& s = job.scene.settings;
+  int spp = std::max(1, s.spp);
+  if (s.target_spp > 0)
+    spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
+  job.pass_spp = spp;
+  job.sample_base = job.spp_done;
+  job.next_tile = 0;
+  job.pass_nans = 0;
+  job.pass_rays = 0;
+  job.aborted = false;
+  job.pass_start = Clock::now();
+  return true;
+}
+
+void ProgressiveRenderer::run_tiles() {
+  Job& job = *job_;
+  const int tiles = job.tiles_x * job.tiles_y;
+  const Scene& scene = job.scene;
+  const std::uint64_t seed = scene.settings.seed;
+  for (;;) {
+    const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
+    if (tile >= tiles) break;
+    // An edit or a stop abandons the pass; its partial sums are discarded.
+    {
+      std::lock_guard lock(pending_mutex_);
+      if (quit_ || pending_generation_ != job.generation) job.aborted = true;
+    }
+    if (job.aborted) break;
+    const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
+    const int i0 = ty * kTile, j0 = tx * kTile;
+    const int i1 = std::min(job.height, i0 + kTile), j1 = std::min(job.width, j0 + kTile);
+    PathStats stats;
+    std::uint64_t nans = 0;
+    for (int i = i0; i < i1; ++i) {
+      for (int j = j0; j < j1; ++j) {
+        const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
+        // double: a pass may hold many thousands of samples per pixel.
+        glm::dvec3 sum(0.0);
+        double sum_sq = 0.0;
+        for (int k = 0; k < job.pass_spp; ++k) {
+          Rng rng(pixel, job.sample_base + std::uint64_t(k), seed);
+          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, rng, stats);
+          if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
+            ++nans;  // dropped and counted, never accumulated
+            continue;
+          }
+          sum += glm::dvec3(c);
+          const double y = luminance(c);
+          sum_sq += y * y;
+        }
+        double* a = &job.acc[std::size_t(pixel) * 3];
+        a[0] += sum.x;
+        a[1] += sum.y;
+        a[2] += sum.z;
+        job.acc_sq[pixel] += sum_sq;
+      }
+    }
+    job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
+    job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
+  }
+}
+
+void ProgressiveRenderer::end_pass() {
+  Job& job = *job_;
+  if (job.aborted) return;
+  job.spp_done += std::uint64_t(job.pass_spp);
+  job.passes += 1;
+  job.nan_count += job.pass_nans;
+  job.rays += job.pass_rays;
+  job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
+  const int target = job.scene.settings.target_spp;
+
+  std::lock_guard lock(publish_mutex_);
+  Snapshot& s = published_;
+  s.width = job.width;
+  s.height = job.height;
+  s.sum.resize(job.acc.size());
+  for (std::size_t k = 0; k < job.acc.size(); ++k) s.sum[k] = float(job.acc[k]);
+  s.sum_sq.resize(job.acc_sq.size());
+  for (std::size_t k = 0; k < job.acc_sq.size(); ++k) s.sum_sq[k] = float(job.acc_sq[k]);
+  s.spp = job.spp_done;
+  s.generation = job.generation;
+  s.version += 1;
+  s.passes = job.passes;
+  s.nan_count = job.nan_count;
+  s.rays = job.rays;
+  s.seconds = job.seconds;
+  s.done = target > 0 && job.spp_done >= std::uint64_t(target);
+  publish_cv_.notify_all();
+}
+
+}  // namespace whisker

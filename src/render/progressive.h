@@ -1,0 +1,101 @@
+// The progressive renderer: worker threads add path-traced samples into a
+// double-precision accumulation buffer, pass after pass; readers (the viewer,
+// the headless mode) take consistent snapshots of it.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace whisker {
+
+class World;
+
+// A consistent copy of the accumulation: sums and count always belong together.
+struct Snapshot {
+  int width = 0, height = 0;
+  std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
+  std::vector<float> sum_sq;  // per-pixel sum of squared luminance (noise estimate)
+  std::uint64_t spp = 0;      // samples per pixel in `sum`
+  std::uint64_t generation = 0;
+  std::uint64_t version = 0;  // bumps with every published pass
+  std::uint64_t passes = 0;
+  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped this generation
+  std::uint64_t rays = 0;       // rays traced this generation
+  double seconds = 0.0;         // render time this generation
+  bool done = false;            // reached the target samples per pixel
+
+  // Mean radiance of pixel (x, y), channel c.
+  float mean(int x, int y, int c) const {
+    return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
+  }
+  // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
+  // sum_px mean_px, from the luminance sums of squares.
+  double relative_standard_error() const;
+};
+
+class ProgressiveRenderer {
+ public:
+  // threads <= 0: all hardware threads.
+  explicit ProgressiveRenderer(int threads = 0);
+  ~ProgressiveRenderer();
+  ProgressiveRenderer(const ProgressiveRenderer&) = delete;
+  ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
+
+  // Adopt a scene and its settings at the next pass boundary: the buffer is
+  // cleared and samples of older generations are thrown away. Returns the new
+  // generation number. Thread-safe.
+  std::uint64_t set_scene(const Scene& scene);
+  // Same, for settings-only edits. (A scene whose meshes are the same
+  // objects, and the same accel kind, reuses the BVH either way.)
+  std::uint64_t set_settings(const RenderSettings& settings);
+
+  void start();                 // launch the workers
+  void stop();                  // join them (finishes the current pass)
+  void set_paused(bool paused);
+  bool paused() const { return paused_.load(); }
+  void set_threads(int threads);  // restarts the pool if running
+  int threads() const { return threads_; }
+
+  // Copies the latest published pass into `out` if its version differs from
+  // out.version; returns whether it copied. Never waits for a pass.
+  bool snapshot(Snapshot& out) const;
+
+  // Blocks until generation `gen` has at least `spp` samples per pixel (or
+  // reached its target). Returns false if the renderer was stopped first.
+  bool wait_for(std::uint64_t gen, std::uint64_t spp);
+
+  // The scene currently being rendered (after adoption).
+  Scene current_scene() const;
+
+ private:
+  struct Job;
+  void worker_main(int index);
+  bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
+  void run_tiles();
+  void end_pass();     // thread 0 only: merge and publish
+
+  int threads_ = 1;
+  std::vector<std::thread> pool_;
+  std::unique_ptr<Job> job_;
+  std::atomic<bool> paused_{false};
+  std::atomic<bool> running_{false};
+  // pending state, guarded by pending_mutex_
+  mutable std::mutex pending_mutex_;
+  std::condition_variable pending_cv_;
+  Scene pending_scene_;
+  std::uint64_t pending_generation_ = 0;
+  bool quit_ = false;
+  // published snapshot, guarded by publish_mutex_
+  mutable std::mutex publish_mutex_;
+  std::condition_variable publish_cv_;
+  Snapshot published_;
+};
+
+}  // namespace whisker

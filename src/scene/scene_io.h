@@ -1,0 +1,45 @@
+// Scene files (JSON) to Scene and back, with messages that name the field.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace whisker {
+
+// Thrown for a scene file that cannot be used. what() is one line naming the
+// file, and the field ("spheres[2].radius") or line:column of a syntax error.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The folder holding the bundled scenes: $WHISKER_SCENES, else
+// <source>/assets/scenes.
+std::filesystem::path scenes_dir();
+// NAME -> scenes_dir()/NAME.json; anything with a '/' or ending in .json is a path.
+std::filesystem::path resolve_scene(const std::string& name_or_path);
+// Names of the bundled scenes, sorted.
+std::vector<std::string> list_scenes();
+
+// Parses and validates a scene file, loading its meshes. Throws SceneError.
+// A non-empty mesh_override replaces every mesh's path (the --mesh option).
+Scene load_scene(const std::filesystem::path& path, const std::string& mesh_override = {});
+Scene parse_scene(const std::string& text, const std::string& source_name,
+                  const std::filesystem::path& base_dir = {},
+                  const std::string& mesh_override = {});
+
+// Scene to JSON text (the format load_scene reads).
+std::string scene_to_json(const Scene& scene);
+// The camera alone as scene-file JSON ("camera": {...}).
+std::string camera_to_json(const Camera& camera);
+
+// Where a mesh path resolves: relative to the scene file, $WHISKER_ASSETS,
+// <source>/assets, <source>/../shared/assets. Throws SceneError naming them.
+std::filesystem::path resolve_mesh(const std::string& path,
+                                   const std::filesystem::path& base_dir,
+                                   const std::string& field);
+
+}  // namespace whisker

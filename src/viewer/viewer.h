@@ -1,0 +1,38 @@
+// The interactive progressive viewer: a thin consumer of ProgressiveRenderer.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "scene/scene.h"
+
+namespace whisker {
+
+// An edit applied by the viewer after a given number of passes (scripted
+// runs and tests drive the UI path with these).
+struct ScriptedEdit {
+  int after_pass = 0;
+  std::optional<glm::vec3> light_position;
+};
+
+struct ViewerOptions {
+  Scene scene;                   // loaded scene with CLI overrides applied
+  std::string scene_path;        // file it came from (for the picker / titles)
+  int threads = 0;               // 0 = all hardware threads
+  int frames = 0;                // > 0: exit after this many passes of the final generation
+  std::string screenshot_path;   // with frames: save the window framebuffer here
+  std::vector<ScriptedEdit> edits;
+  int width = 0, height = 0;     // window size (0 = fit the image plus panel)
+};
+
+// True if a window can be opened (a display is there and GLFW initialises).
+bool display_available();
+
+// Runs the window until closed (or `frames` passes). Returns the process exit
+// code: 0 ok, 3 no display / no OpenGL 3.3 (message printed to stderr).
+int run_viewer(const ViewerOptions& options);
+
+}  // namespace whisker

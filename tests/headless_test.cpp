@@ -1,0 +1,161 @@
+// End to end: the whisker binary in headless mode, on every sphere scene,
+// and its answers to bad input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+#include "render/image_io.h"
+
+namespace fs = std::filesystem;
+using namespace whisker;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(WHISKER_BIN) + " " + args + " 2>&1";
+  Result r{-1, {}};
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path temp_dir() {
+  const fs::path d = fs::temp_directory_path() / ("whisker-e2e-" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+// Reads back the 8-bit PNG through the PNG's own header: width and height.
+std::pair<int, int> png_size(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  unsigned char h[24] = {};
+  in.read(reinterpret_cast<char*>(h), 24);
+  if (std::string(reinterpret_cast<char*>(h) + 1, 3) != "PNG") return {0, 0};
+  auto be = [&](int o) { return (h[o] << 24) | (h[o + 1] << 16) | (h[o + 2] << 8) | h[o + 3]; };
+  return {be(16), be(20)};
+}
+
+}  // namespace
+
+TEST(Headless, EverySphereSceneWritesPngFloatImageAndStats) {
+  const fs::path dir = temp_dir();
+  for (const char* name : {"diffuse-ball", "three-balls", "three-balls-fresnel", "indirect",
+                           "antialiased-ball"}) {
+    const fs::path png = dir / (std::string(name) + ".png");
+    const fs::path pfm = dir / (std::string(name) + ".pfm");
+    const fs::path stats = dir / (std::string(name) + ".json");
+    const Result r = run(std::string("--headless --quiet --scene ") + name +
+                         " --frames 2 --out " + png.string() + " --out-float " + pfm.string() +
+                         " --stats " + stats.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 spp"), std::string::npos) << r.output;
+    EXPECT_EQ(png_size(png), std::make_pair(512, 512));
+    const Image img = read_pfm(pfm.string());
+    EXPECT_EQ(img.width, 512);
+    std::ifstream sj(stats);
+    const auto j = nlohmann::json::parse(sj);
+    EXPECT_EQ(j["spp"], 2);
+    EXPECT_EQ(j["nan_count"], 0);
+    EXPECT_GT(j["rays_per_s"].get<double>(), 0.0);
+    // The centre pixel sees a ball or what is behind it, never black.
+    const float c = img.rgb[(256 * 512 + 256) * 3 + 0] + img.rgb[(256 * 512 + 256) * 3 + 1] +
+                    img.rgb[(256 * 512 + 256) * 3 + 2];
+    EXPECT_GT(c, 0.0f) << name;
+  }
+  // No temporary files are left behind.
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+  fs::remove_all(dir);
+}
+
+TEST(Headless, PngFollowsTheReportsMapping) {
+  const fs::path dir = temp_dir();
+  const Result r = run("--headless --quiet --scene diffuse-ball --out " + (dir / "a.png").string() +
+                       " --out-float " + (dir / "a.pfm").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(to_srgb8(0.0f), 0);
+  EXPECT_EQ(to_srgb8(std::pow(100.0f, 2.2f)), 99);  // float rounding just below 100
+  EXPECT_EQ(to_srgb8(std::pow(255.0f, 2.2f) * 2), 255);
+  EXPECT_EQ(to_srgb8(std::pow(100.5f, 2.2f)), 100);
+  fs::remove_all(dir);
+}
+
+TEST(Headless, OpenExrWhenBuiltWithIt) {
+  if (!have_exr()) GTEST_SKIP() << "built without OpenEXR";
+  const fs::path dir = temp_dir();
+  const fs::path exr = dir / "a.exr";
+  const Result r = run("--headless --quiet --scene diffuse-ball --out-float " + exr.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(exr, std::ios::binary);
+  unsigned char magic[4] = {};
+  in.read(reinterpret_cast<char*>(magic), 4);
+  EXPECT_EQ(magic[0], 0x76);  // OpenEXR magic number 20000630
+  EXPECT_EQ(magic[1], 0x2f);
+  EXPECT_EQ(magic[2], 0x31);
+  EXPECT_EQ(magic[3], 0x01);
+  EXPECT_GT(fs::file_size(exr), 512u * 512u * 4u);
+  fs::remove_all(dir);
+}
+
+TEST(Headless, BadInputExitsTwoWithAMessage) {
+  const fs::path dir = temp_dir();
+  const std::string out = " --out " + (dir / "x.png").string();
+  struct Case { std::string args; std::string expect; };
+  std::ofstream(dir / "broken.json") << "{\"spheres\": [ {\"radius\": 3 }";
+  std::ofstream(dir / "typo.json") << "{\"light\": {\"positon\": [0, 0, 0]}}";
+  const Case cases[] = {
+      {"--headless --frames -1 --scene three-balls" + out, "--frames"},
+      {"--headless --frames 0 --scene three-balls" + out, "--frames"},
+      {"--headless --bogus" + out, "--bogus"},
+      {"--headless --scene no-such-scene" + out, "no-such-scene.json: scene file not found"},
+      {"--headless --scene " + (dir / "broken.json").string() + out, "broken.json:1:"},
+      {"--headless --scene " + (dir / "typo.json").string() + out, "light.positon: unknown key"},
+      {"--headless --scene three-balls --out /no/such/dir/x.png", "/no/such/dir does not exist"},
+      {"--headless --scene three-balls --out " + (dir / "x.jpg").string(), "must end in .png"},
+      {"--headless --scene three-balls --out-float " + (dir / "x.tiff").string(), "must end in .pfm or .exr"},
+      {"--headless --scene three-balls --light 1,2" + out, "--light 1,2: expected three finite numbers"},
+      {"--headless --scene three-balls --indirect maybe" + out, "--indirect"},
+      {"--headless --scene three-balls --spp 0" + out, "--spp"},
+      {"--headless --scene three-balls", "needs at least one of --out"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+  fs::remove_all(dir);
+}
+
+TEST(Headless, CommandLineOverridesTheScene) {
+  // Moving the light with --light changes the image; the same command twice
+  // gives the same bytes (determinism end to end).
+  const fs::path dir = temp_dir();
+  auto render = [&](const std::string& extra, const std::string& file) {
+    const Result r = run("--headless --quiet --scene diffuse-ball --out-float " + (dir / file).string() + extra);
+    EXPECT_EQ(r.code, 0) << r.output;
+    return read_pfm((dir / file).string()).rgb;
+  };
+  const auto a = render("", "a.pfm");
+  const auto b = render(" --light 10,20,40", "b.pfm");
+  const auto c = render(" --threads 1", "c.pfm");
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a, c);
+  fs::remove_all(dir);
+}

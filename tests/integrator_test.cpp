@@ -1,0 +1,274 @@
+// The estimator against closed forms: reflection and refraction laws,
+// Schlick, the diffuse ball's direct light, and interreflection inside a
+// closed diffuse sphere.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "render/integrator.h"
+#include "render/progressive.h"
+#include "scene/scene_io.h"
+
+using namespace whisker;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Snapshot render(const Scene& scene, int threads = 0) {
+  ProgressiveRenderer r(threads);
+  const auto gen = r.set_scene(scene);
+  r.start();
+  EXPECT_TRUE(r.wait_for(gen, std::uint64_t(scene.settings.target_spp)));
+  Snapshot s;
+  r.snapshot(s);
+  r.stop();
+  return s;
+}
+
+// A closed diffuse sphere of radius R and grey albedo rho, the camera inside
+// looking at the far wall.
+Scene closed_sphere(float rho, vec3 light, int depth, int spp, int size) {
+  Scene s;
+  s.name = "closed-sphere";
+  s.spheres.push_back({"shell", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, vec3(rho)}});
+  s.light = {light, 1000.0f};
+  s.camera.position = vec3(0.0f, 0.0f, 5.0f);
+  s.camera.look_at = vec3(0.0f, 0.0f, -10.0f);
+  s.camera.width = s.camera.height = size;
+  s.camera.fov_deg = 90.0f;
+  s.settings.indirect = true;
+  s.settings.max_depth = depth;
+  s.settings.spp = spp;
+  s.settings.target_spp = spp;
+  return s;
+}
+
+}  // namespace
+
+TEST(Optics, ReflectionMirrorsTheNormalComponent) {
+  const vec3 d = glm::normalize(vec3(1, -2, 0.5f));
+  const vec3 n(0, 1, 0);
+  const vec3 r = reflect(d, n);
+  EXPECT_FLOAT_EQ(r.x, d.x);
+  EXPECT_FLOAT_EQ(r.y, -d.y);
+  EXPECT_FLOAT_EQ(r.z, d.z);
+}
+
+TEST(Optics, SnellAtManyAngles) {
+  // n1 sin(i) = n2 sin(t), with the refracted ray in the plane of d and n.
+  const vec3 n(0, 0, 1);
+  for (const auto [n1, n2] : {std::pair{1.0f, 1.5f}, {1.5f, 1.0f}, {1.0f, 2.4f}}) {
+    for (int k = 0; k < 90; ++k) {
+      const double i = k * kPi / 180.0;
+      const vec3 d(float(std::sin(i)), 0.0f, float(-std::cos(i)));
+      vec3 t;
+      const double sin_t = n1 / n2 * std::sin(i);
+      if (sin_t >= 1.0) {
+        EXPECT_FALSE(refract(d, n, n1 / n2, t)) << "TIR expected at " << k << " deg";
+        continue;
+      }
+      if (sin_t > 0.9999) continue;  // grazing: the boundary itself
+      ASSERT_TRUE(refract(d, n, n1 / n2, t)) << k;
+      EXPECT_NEAR(glm::length(t), 1.0f, 1e-6f);
+      EXPECT_NEAR(t.x, sin_t, 2e-6) << k;
+      EXPECT_NEAR(t.y, 0.0f, 1e-7f);
+      EXPECT_LT(t.z, 0.0f);
+    }
+  }
+}
+
+TEST(Optics, TotalInternalReflectionPastTheCriticalAngle) {
+  // From glass (1.5) to air the critical angle is asin(1/1.5) = 41.81 deg.
+  const double crit = std::asin(1.0 / 1.5);
+  const vec3 n(0, 0, 1);
+  vec3 t;
+  for (const double i : {crit + 1e-3, crit + 0.1, 1.2, 1.5}) {
+    const vec3 d(float(std::sin(i)), 0.0f, float(-std::cos(i)));
+    EXPECT_FALSE(refract(d, n, 1.5f, t)) << i;
+  }
+  const vec3 d(float(std::sin(crit - 1e-3)), 0.0f, float(-std::cos(crit - 1e-3)));
+  EXPECT_TRUE(refract(d, n, 1.5f, t));
+}
+
+TEST(Optics, SchlickMatchesItsEndpoints) {
+  EXPECT_NEAR(schlick(1.0f, 1.0f, 1.5f), 0.04f, 1e-7f);  // ((1.5-1)/(1.5+1))^2
+  EXPECT_NEAR(schlick(-1.0f, 1.5f, 1.0f), 0.04f, 1e-7f);
+  EXPECT_NEAR(schlick(0.0f, 1.0f, 1.5f), 1.0f, 1e-7f);   // grazing
+  // Halfway: R0 + (1 - R0) 0.5^5.
+  EXPECT_NEAR(schlick(0.5f, 1.0f, 1.5f), 0.04f + 0.96f / 32.0f, 1e-6f);
+}
+
+TEST(Optics, CosineSamplingHasTheRightMoments) {
+  // For p(w) = cos/pi: E[cos] = 2/3, E[cos^2] = 1/2, and the tangential
+  // components average to zero.
+  std::mt19937 g(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const vec3 n = glm::normalize(vec3(0.3f, -0.5f, 0.8f));
+  double c1 = 0, c2 = 0;
+  vec3 mean(0.0f);
+  const int N = 400000;
+  for (int k = 0; k < N; ++k) {
+    const vec3 w = cosine_direction(n, u(g), u(g));
+    const double c = glm::dot(w, n);
+    ASSERT_GE(c, 0.0);
+    c1 += c;
+    c2 += c * c;
+    mean += w - float(c) * n;
+  }
+  EXPECT_NEAR(c1 / N, 2.0 / 3.0, 5 * std::sqrt(1.0 / 18.0 / N));  // var(cos) = 1/2 - 4/9
+  EXPECT_NEAR(c2 / N, 0.5, 5 * std::sqrt(1.0 / 12.0 / N));
+  EXPECT_LT(glm::length(mean) / N, 3e-3);
+}
+
+// Fig 1: the white ball lit directly. Every pixel whose camera and shadow
+// rays are not on a silhouette equals I/(4 pi d^2) rho/pi cos, computed here
+// in double with an independent intersection.
+TEST(DirectLight, DiffuseBallPixelsEqualTheClosedForm) {
+  Scene scene = load_scene(resolve_scene("diffuse-ball"));
+  const Snapshot snap = render(scene);
+  ASSERT_EQ(snap.spp, 1u);
+
+  struct S { glm::dvec3 c; double r; glm::dvec3 albedo; };
+  std::vector<S> spheres;
+  for (const auto& s : scene.spheres) spheres.push_back({glm::dvec3(s.center), double(s.radius), glm::dvec3(s.material.albedo)});
+  // Closest hit in double; `margin` is how far the ray passes from any silhouette.
+  auto trace = [&](glm::dvec3 o, glm::dvec3 d, double tmax, int& idx, double& margin) {
+    double best = tmax;
+    idx = -1;
+    margin = 1e300;
+    for (int k = 0; k < int(spheres.size()); ++k) {
+      const glm::dvec3 f = o - spheres[k].c;
+      const double b = glm::dot(f, d);
+      const glm::dvec3 perp = f - b * d;
+      const double dist = std::sqrt(glm::dot(perp, perp));
+      margin = std::min(margin, std::fabs(dist - spheres[k].r));
+      const double disc = spheres[k].r * spheres[k].r - glm::dot(perp, perp);
+      if (disc < 0) continue;
+      const double sq = std::sqrt(disc);
+      for (double t : {-b - sq, -b + sq})
+        if (t > 1e-6 && t < best) { best = t; idx = k; break; }
+    }
+    return best;
+  };
+  const glm::dvec3 light(scene.light.position);
+  const double I = scene.light.intensity;
+  const double W = scene.camera.width, H = scene.camera.height;
+  const double focal = W / (2 * std::tan(kPi / 6));
+  int checked = 0;
+  for (int i = 3; i < 512; i += 8) {
+    for (int j = 5; j < 512; j += 8) {
+      const glm::dvec3 o(0, 0, 55);
+      const glm::dvec3 d = glm::normalize(glm::dvec3(j - W / 2 + 0.5, H / 2 - i - 0.5, -focal));
+      int idx;
+      double margin;
+      const double t = trace(o, d, 1e30, idx, margin);
+      if (idx < 0 || margin < 1e-2) continue;
+      const glm::dvec3 p = o + t * d;
+      glm::dvec3 n = glm::normalize(p - spheres[idx].c);
+      if (glm::dot(n, d) > 0) n = -n;
+      const glm::dvec3 to = light - p;
+      const double dist = glm::length(to);
+      const glm::dvec3 wi = to / dist;
+      double expect[3] = {0, 0, 0};
+      const double cos = glm::dot(n, wi);
+      int blocker;
+      double smargin;
+      trace(p + 1e-6 * n, wi, dist, blocker, smargin);
+      if (smargin < 1e-2) continue;  // shadow boundary: float may go either way
+      if (cos > 1e-4 && blocker < 0)
+        for (int c = 0; c < 3; ++c) expect[c] = I / (4 * kPi * dist * dist) * spheres[idx].albedo[c] / kPi * cos;
+      for (int c = 0; c < 3; ++c) {
+        const double got = snap.mean(j, i, c);
+        EXPECT_NEAR(got, expect[c], 2e-5 * expect[c] + 1e-3) << "pixel row " << i << " col " << j << " c " << c;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 3500);
+}
+
+// A point light at the centre of a closed diffuse sphere: every path sees the
+// same values, so with B = depth + 1 diffuse hits
+//   L = rho I / (pi R^2) (1 - rho^B) / (1 - rho) * 1/(4 pi)   (report normalisation)
+// holds for every sample, to float precision.
+TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
+  const double rho = 0.6, I = 1000.0, R = 10.0;
+  for (int depth = 0; depth <= 5; ++depth) {
+    const Snapshot s = render(closed_sphere(float(rho), vec3(0.0f), depth, 64, 8));
+    const int B = depth + 1;
+    const double expect = rho * I / (kPi * R * R) * (1 - std::pow(rho, B)) / (1 - rho) / (4 * kPi);
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth;
+  }
+}
+
+// Off-centre light c: at the first hit y,
+//   L(y) = rho/pi [I cos/|c-y|^2 + (I/R^2) rho (1 - rho^(B-1))/(1 - rho)] * 1/(4 pi)
+// (a cosine-sampled direction inside a sphere lands uniformly on its area).
+// Each pixel mean must sit within a few standard errors of it.
+TEST(IndirectLight, OffCentreLightInClosedSphere) {
+  const double rho = 0.5, I = 1000.0, R = 10.0;
+  const glm::dvec3 c(3.0, -2.0, 1.0);
+  for (int depth : {1, 3, 5}) {
+    const int spp = 4096, size = 6;
+    const Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
+    const Snapshot s = render(scene);
+    const int B = depth + 1;
+    const CameraFrame cam(scene.camera);
+    double chi2 = 0.0;
+    for (int i = 0; i < size; ++i) {
+      for (int j = 0; j < size; ++j) {
+        const Ray r = cam.ray(i, j, 0.0f, 0.0f);
+        const glm::dvec3 o(r.o), d(r.d);
+        const double b = glm::dot(o, d);
+        const double t = -b + std::sqrt(b * b - (glm::dot(o, o) - R * R));
+        const glm::dvec3 y = o + t * d;
+        const glm::dvec3 n = -y / R;  // inward
+        const glm::dvec3 to = c - y;
+        const double d2 = glm::dot(to, to);
+        const double cos = glm::dot(n, to) / std::sqrt(d2);
+        const double expect = rho / kPi * (I * cos / d2 + I / (R * R) * rho * (1 - std::pow(rho, B - 1)) / (1 - rho)) / (4 * kPi);
+        const std::size_t p = std::size_t(i) * size + j;
+        const double mean = s.sum[3 * p] / double(spp);
+        const double var = (s.sum_sq[p] / double(spp) - mean * mean) * spp / (spp - 1.0);
+        const double se = std::sqrt(var / spp);
+        EXPECT_NEAR(mean, expect, 5 * se + 1e-9) << "depth " << depth << " pixel " << i << "," << j;
+        chi2 += (mean - expect) * (mean - expect) / (se * se);
+      }
+    }
+    // 36 pixels: the sum of squared z-scores is chi-square with 36 dof;
+    // P(chi2 > 80) < 1e-4.
+    EXPECT_LT(chi2, 80.0) << "depth " << depth;
+  }
+}
+
+// Sums over millions of samples keep their digits: 2^21 samples of one pixel
+// whose every path has the same value still give that value to 1e-6.
+TEST(Accumulation, MillionsOfSamplesKeepPrecision) {
+  Scene scene = closed_sphere(0.6f, vec3(0.0f), 2, 1 << 17, 1);
+  scene.settings.target_spp = 1 << 21;
+  const Snapshot s = render(scene);
+  ASSERT_EQ(s.spp, std::uint64_t(1) << 21);
+  const double rho = 0.6, expect = rho * 1000.0 / (kPi * 100.0) * (1 - rho * rho * rho) / (1 - rho) / (4 * kPi);
+  // A float running sum would be off by ~1e-3 here; the buffer is double.
+  EXPECT_NEAR(double(s.sum[0]) / double(s.spp), expect, 1e-6 * expect);
+}
+
+TEST(Accumulation, InfiniteSamplesAreDroppedAndCounted) {
+  // A light a ten-millionth above the ball's surface, at huge intensity: the
+  // direct term overflows float to +inf on the pixel that looks straight at it.
+  Scene scene;
+  scene.spheres.push_back({"ball", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, vec3(1.0f)}});
+  scene.light = {vec3(0.0f, 0.0f, 10.000001f), 1e30f};
+  scene.camera.width = scene.camera.height = 1;
+  scene.settings.spp = scene.settings.target_spp = 4;
+  const Snapshot s = render(scene);
+  EXPECT_EQ(s.nan_count, 4u);
+  EXPECT_EQ(s.sum[0], 0.0f);
+  EXPECT_TRUE(std::isfinite(s.sum[0]));
+}

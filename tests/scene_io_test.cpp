@@ -1,0 +1,136 @@
+// Scene files: the bundled scenes hold the report's numbers; bad files give
+// one message naming the file and the field.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/scene_io.h"
+
+using namespace whisker;
+
+namespace {
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, "bad.json");
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const char* kBall = R"({"spheres": [{"center": [0,0,0], "radius": 10, "material": {"type": "diffuse"}}]})";
+
+}  // namespace
+
+TEST(SceneFiles, BundledScenesHoldTheReportsNumbers) {
+  for (const char* name : {"diffuse-ball", "three-balls", "three-balls-fresnel", "indirect",
+                           "antialiased-ball"}) {
+    const Scene s = load_scene(resolve_scene(name));
+    EXPECT_EQ(s.name, name);
+    EXPECT_EQ(s.camera.position, vec3(0, 0, 55));
+    EXPECT_EQ(s.camera.width, 512);
+    EXPECT_EQ(s.camera.height, 512);
+    EXPECT_EQ(s.camera.fov_deg, 60.0f);
+    EXPECT_EQ(s.light.position, vec3(-10, 20, 40));
+    EXPECT_EQ(s.light.intensity, 2e10f);
+    EXPECT_EQ(s.settings.max_depth, 5);
+    // The room: six walls as SCENES.md lists them.
+    ASSERT_GE(s.spheres.size(), 7u);
+    EXPECT_EQ(s.spheres[0].center, vec3(0, 1000, 0));
+    EXPECT_EQ(s.spheres[0].radius, 940.0f);
+    EXPECT_EQ(s.spheres[0].material.albedo, vec3(1, 0, 0));
+    EXPECT_EQ(s.spheres[1].radius, 990.0f);
+    EXPECT_EQ(s.spheres[1].material.albedo, vec3(0, 0, 1));
+    EXPECT_EQ(s.spheres[2].center, vec3(0, 0, -1000));
+    EXPECT_EQ(s.spheres[2].material.albedo, vec3(0, 1, 0));
+    EXPECT_EQ(s.spheres[3].material.albedo, vec3(1, 0, 1));
+    EXPECT_EQ(s.spheres[4].material.albedo, vec3(0, 1, 1));
+    EXPECT_EQ(s.spheres[5].material.albedo, vec3(1, 1, 0));
+  }
+  const Scene f = load_scene(resolve_scene("three-balls-fresnel"));
+  EXPECT_TRUE(f.settings.fresnel);
+  EXPECT_EQ(f.settings.target_spp, 1024);
+  EXPECT_EQ(f.spheres[6].material.kind, MaterialKind::Mirror);
+  EXPECT_EQ(f.spheres[6].center, vec3(-20, 0, 0));
+  EXPECT_EQ(f.spheres[7].material.kind, MaterialKind::Glass);
+  EXPECT_EQ(f.spheres[7].material.ior, 1.5f);
+  EXPECT_EQ(f.spheres[8].material.kind, MaterialKind::HollowGlass);
+  EXPECT_EQ(f.spheres[8].radius, 10.0f);
+  EXPECT_EQ(f.spheres[8].inner_radius, 9.8f);
+  const Scene ind = load_scene(resolve_scene("indirect"));
+  EXPECT_TRUE(ind.settings.indirect);
+  EXPECT_EQ(ind.settings.target_spp, 32);
+  const Scene aa = load_scene(resolve_scene("antialiased-ball"));
+  EXPECT_TRUE(aa.settings.aa);
+}
+
+TEST(SceneFiles, RoundTripThroughJson) {
+  const Scene a = load_scene(resolve_scene("three-balls-fresnel"));
+  const Scene b = parse_scene(scene_to_json(a), "roundtrip.json");
+  ASSERT_EQ(a.spheres.size(), b.spheres.size());
+  for (std::size_t k = 0; k < a.spheres.size(); ++k) {
+    EXPECT_EQ(a.spheres[k].center, b.spheres[k].center);
+    EXPECT_EQ(a.spheres[k].radius, b.spheres[k].radius);
+    EXPECT_EQ(a.spheres[k].material.kind, b.spheres[k].material.kind);
+  }
+  EXPECT_EQ(a.settings.fresnel, b.settings.fresnel);
+  EXPECT_EQ(a.light.position, b.light.position);
+}
+
+TEST(SceneFiles, SyntaxErrorNamesLineAndColumn) {
+  const std::string e = error_of("{\n  \"name\": \"x\",\n  \"light\": {\"position\": [1, 2,, 3]}\n}");
+  EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
+  EXPECT_NE(e.find("invalid JSON"), std::string::npos) << e;
+}
+
+TEST(SceneFiles, BadFieldsAreNamed) {
+  struct Case { const char* text; const char* expect; };
+  const Case cases[] = {
+      {R"({"lights": {}})", "bad.json: lights: unknown key"},
+      {R"({"light": {"position": [1, 2]}})", "bad.json: light.position: must be an array of 3 numbers"},
+      {R"({"light": {"position": [1, "2", 3]}})", "bad.json: light.position[1]: must be a number"},
+      {R"({"light": {"intensity": -5}})", "bad.json: light.intensity: must be in [0"},
+      {R"({"light": {"intensity": 1e999}})", "bad.json: light.intensity: must be finite"},
+      {R"({"camera": {"up": [0, 0, 0]}})", "bad.json: camera.up: must not be zero-length"},
+      {R"({"camera": {"width": 0}})", "bad.json: camera.width: must be in [1, 16384]"},
+      {R"({"camera": {"width": 1.5}})", "bad.json: camera.width: must be an integer"},
+      {R"({"camera": {"look_at": [0, 0, 55]}})", "bad.json: camera.look_at: must differ"},
+      {R"({"settings": {"indirect": "yes"}})", "bad.json: settings.indirect: must be true or false"},
+      {R"({"settings": {"max_depth": -1}})", "bad.json: settings.max_depth: must be in [0, 1000]"},
+      {R"({"settings": {"accel": "kd"}})", "bad.json: settings.accel: unknown accel"},
+      {R"({"spheres": {}})", "bad.json: spheres: must be an array"},
+      {R"({"spheres": [{"center": [0,0,0], "radius": -1, "material": {"type": "diffuse"}}]})",
+       "bad.json: spheres[0].radius: must be positive"},
+      {R"({"spheres": [{"center": [0,0,0], "material": {"type": "diffuse"}}]})",
+       "bad.json: spheres[0].radius: missing"},
+      {R"({"spheres": [{"center": [0,0,0], "radius": 1, "material": {"type": "gold"}}]})",
+       "bad.json: spheres[0].material.type: unknown material \"gold\""},
+      {R"({"spheres": [{"center": [0,0,0], "radius": 1, "material": {"type": "diffuse", "albedo": [2, 0, 0]}}]})",
+       "bad.json: spheres[0].material.albedo[0]: must be in [0, 1]"},
+      {R"({"spheres": [{"center": [0,0,0], "radius": 1, "material": {"type": "mirror", "ior": 1.5}}]})",
+       "bad.json: spheres[0].material.ior: only glass"},
+      {R"({"spheres": [{"center": [0,0,0], "radius": 10, "material": {"type": "hollow_glass"}}]})",
+       "bad.json: spheres[0].inner_radius: missing"},
+      {R"({"spheres": [{"center": [0,0,0], "radius": 10, "inner_radius": 12, "material": {"type": "hollow_glass"}}]})",
+       "bad.json: spheres[0].inner_radius: must be smaller than radius"},
+      {R"({"meshes": [{"path": "no-such-mesh.obj"}]})", "bad.json: meshes[0].path: mesh \"no-such-mesh.obj\" not found"},
+      {R"([1, 2])", "bad.json: top level: must be an object"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = error_of(c.text);
+    EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.text << "\nmessage: " << e;
+  }
+  EXPECT_EQ(error_of(kBall), "(no error)");
+}
+
+TEST(SceneFiles, MissingFileNamesTheBundledScenes) {
+  try {
+    load_scene(resolve_scene("no-such-scene"));
+    FAIL() << "expected an error";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("no-such-scene.json: scene file not found"), std::string::npos) << m;
+    EXPECT_NE(m.find("three-balls"), std::string::npos) << m;
+  }
+}
