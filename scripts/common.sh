@@ -1,0 +1,45 @@
+# Shared by run.sh and test.sh: install what is missing, configure, build.
+# Sourced, not run.
+
+WHISKER_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+WHISKER_BUILD=${WHISKER_BUILD:-$WHISKER_ROOT/build}
+
+# Debian packages the build and the tests need.
+WHISKER_PACKAGES=(
+  g++ make cmake pkg-config python3
+  libglm-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev libopenexr-dev
+  libgtest-dev libbenchmark-dev libembree-dev
+  libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth
+)
+
+whisker_log() { printf '\033[1mwhisker:\033[0m %s\n' "$*" >&2; }
+
+whisker_install() {
+  local missing=() p
+  for p in "${WHISKER_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q '^install ok installed$' || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then
+      sudo=(sudo)
+    else
+      whisker_log "missing packages: ${missing[*]}; run as root or install sudo"
+      return 1
+    fi
+  fi
+  whisker_log "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -q || return 1
+  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" || return 1
+}
+
+whisker_build() {
+  local jobs
+  jobs=$(nproc 2>/dev/null || echo 2)
+  if [ ! -f "$WHISKER_BUILD/CMakeCache.txt" ]; then
+    cmake -S "$WHISKER_ROOT" -B "$WHISKER_BUILD" -DCMAKE_BUILD_TYPE=Release || return 1
+  fi
+  cmake --build "$WHISKER_BUILD" -j "$jobs" || return 1
+}

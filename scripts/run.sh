@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds Whisker (Release, into build/) and runs it.
+#   scripts/run.sh                 the viewer on the cat scene (headless render without a display)
+#   scripts/run.sh --headless ...  any whisker options
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+whisker_install
+whisker_build >&2
+
+if [ $# -gt 0 ]; then
+  exec "$WHISKER_BUILD/whisker" "$@"
+fi
+status=0
+"$WHISKER_BUILD/whisker" || status=$?
+if [ "$status" -eq 3 ]; then
+  # No display: render the default scene without a window instead.
+  out="$PWD/whisker-cat.png"
+  whisker_log "no display; rendering the cat scene headless to $out"
+  exec "$WHISKER_BUILD/whisker" --headless --scene cat --frames 16 --out "$out"
+fi
+exit "$status"
