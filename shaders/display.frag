@@ -32,6 +32,9 @@ void main() {
     colour = vec4(m > 0.0 ? heat((log(rel) / log(10.0) + 3.0) / 3.0) : vec3(0.0), 1.0);
     return;
   }
-  // SCENES.md: 8-bit value = min(255, L^(1/2.2)) = 255 * min(1, (L / 255^2.2)^(1/2.2)).
-  colour = vec4(min(pow(max(mean * exposure, 0.0), vec3(1.0 / gamma)), 1.0), 1.0);
+  // SCENES.md: 8-bit value = min(255, L^(1/2.2)) = 255 * min(1, (L / 255^2.2)^(1/2.2)),
+  // truncated like the report's (and the PNG writer's) integer conversion;
+  // GL would round, which shows as a half-level brightening against the PNG.
+  vec3 v = min(pow(max(mean * exposure, 0.0), vec3(1.0 / gamma)), 1.0);
+  colour = vec4(floor(v * 255.0) / 255.0, 1.0);
 }

@@ -38,7 +38,10 @@ static void stats(ViewerState& s, double now) {
   ImGui::Text("rays/s  %s   render time %.1f s",
               human(secs > 0.0 ? sn.rays / secs : 0.0).c_str(), secs);
   ImGui::Text("since last change  %.1f s", now - s.last_change);
-  ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
+  if (std::isfinite(s.rse))
+    ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
+  else
+    ImGui::Text("rel. std. error  n/a (needs 2 spp)");
   if (sn.nan_count)
     ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "NaN/Inf samples dropped  %llu",
                        (unsigned long long)sn.nan_count);

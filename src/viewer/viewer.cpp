@@ -161,6 +161,14 @@ struct FrameStats {
   }
 };
 
+// JSON has no inf/nan: those become null.
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
 // A summary next to a scripted screenshot (<screenshot>.json): where the
 // render area is, what was rendered, how fast the UI ran.
 void write_summary(const std::string& path, const PixelRect& r, const ViewerState& s,
@@ -173,7 +181,7 @@ void write_summary(const std::string& path, const PixelRect& r, const ViewerStat
                "  \"image\": [%d, %d],\n  \"scene\": \"%s\",\n  \"spp\": %llu,\n"
                "  \"passes\": %llu,\n  \"generation\": %llu,\n  \"nan_count\": %llu,\n"
                "  \"render_seconds\": %.4f,\n  \"passes_per_second\": %.4f,\n"
-               "  \"rays_per_second\": %.1f,\n  \"rel_std_error\": %.6g,\n"
+               "  \"rays_per_second\": %.1f,\n  \"rel_std_error\": %s,\n"
                "  \"ui_frames\": %zu,\n  \"ui_frame_ms_mean\": %.3f,\n"
                "  \"ui_frame_ms_p95\": %.3f,\n  \"ui_frame_ms_max\": %.3f,\n"
                "  \"ui_frame_work_ms_mean\": %.3f\n}\n",
@@ -182,7 +190,7 @@ void write_summary(const std::string& path, const PixelRect& r, const ViewerStat
                (unsigned long long)s.snap.passes, (unsigned long long)s.snap.generation,
                (unsigned long long)s.snap.nan_count, secs,
                secs > 0 ? s.snap.passes / secs : 0.0, secs > 0 ? s.snap.rays / secs : 0.0,
-               s.rse, f.total_ms.size(), FrameStats::mean(f.total_ms),
+               json_number(s.rse).c_str(), f.total_ms.size(), FrameStats::mean(f.total_ms),
                FrameStats::pct(f.total_ms, 0.95),
                f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end()),
                FrameStats::mean(f.work_ms));
@@ -285,11 +293,9 @@ int run_viewer(const ViewerOptions& opt) {
     }
 
     // A scripted run renders exactly `frames` passes of its last generation,
-    // so its screenshot compares with a headless render of as many passes.
+    // as the headless mode does, so its screenshot compares with that render.
     if (opt.frames > 0) {
-      const int target = opt.frames * std::max(1, opt.scene.settings.spp);
-      int& t = s.initial.settings.target_spp;
-      t = t > 0 ? std::min(t, target) : target;
+      s.initial.settings.target_spp = opt.frames * std::max(1, opt.scene.settings.spp);
       s.applied = s.edited = s.initial;
     }
 

@@ -1,0 +1,130 @@
+// The viewer's window-free logic: which edits restart the render, and the
+// mouse camera moves.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "viewer/camera_control.h"
+#include "viewer/display.h"
+#include "viewer/scene_diff.h"
+
+using namespace whisker;
+
+namespace {
+
+Scene three_balls() {
+  Scene s;
+  SphereObject a;
+  a.name = "mirror";
+  a.center = {-20, 0, 0};
+  a.radius = 10;
+  a.material.kind = MaterialKind::Mirror;
+  s.spheres.push_back(a);
+  SphereObject b = a;
+  b.name = "hollow";
+  b.center = {20, 0, 0};
+  b.inner_radius = 9.8f;
+  b.material.kind = MaterialKind::HollowGlass;
+  s.spheres.push_back(b);
+  return s;
+}
+
+}  // namespace
+
+TEST(SceneChange, SameValuesRestartNothing) {
+  const Scene a = three_balls();
+  Scene b = a;
+  EXPECT_EQ(classify_change(a, b), SceneChange::None);
+  // A drag that ends where it started, a checkbox clicked twice.
+  b.light.position.x += 1.0f;
+  b.light.position.x -= 1.0f;
+  b.settings.fresnel = !b.settings.fresnel;
+  b.settings.fresnel = !b.settings.fresnel;
+  EXPECT_EQ(classify_change(a, b), SceneChange::None);
+}
+
+TEST(SceneChange, SettingsOnly) {
+  const Scene a = three_balls();
+  for (auto edit : {+[](RenderSettings& r) { r.spp = 4; },
+                    +[](RenderSettings& r) { r.max_depth = 2; },
+                    +[](RenderSettings& r) { r.indirect = true; },
+                    +[](RenderSettings& r) { r.aa = true; },
+                    +[](RenderSettings& r) { r.target_spp = 64; }}) {
+    Scene b = a;
+    edit(b.settings);
+    EXPECT_EQ(classify_change(a, b), SceneChange::Settings);
+  }
+}
+
+TEST(SceneChange, SceneEdits) {
+  const Scene a = three_balls();
+  Scene b = a;
+  b.light.intensity *= 2.0f;
+  EXPECT_EQ(classify_change(a, b), SceneChange::Scene);
+  b = a;
+  b.spheres[1].material.ior = 1.33f;
+  EXPECT_EQ(classify_change(a, b), SceneChange::Scene);
+  b = a;
+  b.spheres[0].material.albedo = vec3(0.5f);
+  EXPECT_EQ(classify_change(a, b), SceneChange::Scene);
+  b = a;
+  b.spheres[1].inner_radius = 9.0f;
+  EXPECT_EQ(classify_change(a, b), SceneChange::Scene);
+  b = a;
+  b.camera.fov_deg = 45.0f;
+  b.settings.spp = 2;  // a scene change covers settings too
+  EXPECT_EQ(classify_change(a, b), SceneChange::Scene);
+}
+
+TEST(CameraControl, OrbitKeepsDistanceAndTarget) {
+  Camera c;
+  const float r = glm::length(c.position - c.look_at);
+  orbit(c, 0.7f, -0.3f);
+  EXPECT_NEAR(glm::length(c.position - c.look_at), r, 1e-3f * r);
+  EXPECT_EQ(c.look_at, vec3(0.0f));
+  EXPECT_GT(std::fabs(c.position.x), 1.0f);
+  EXPECT_GT(c.position.y, 1.0f);  // dragging up-screen lifts the eye (dy < 0)
+}
+
+TEST(CameraControl, OrbitStopsBeforeThePole) {
+  Camera c;
+  orbit(c, 0.0f, -10.0f);  // far past straight above
+  const vec3 dir = glm::normalize(c.position - c.look_at);
+  EXPECT_LT(glm::dot(dir, vec3(0, 1, 0)), std::cos(glm::radians(0.5f)));
+  EXPECT_GT(glm::dot(dir, vec3(0, 1, 0)), std::cos(glm::radians(1.5f)));
+}
+
+TEST(CameraControl, PanFollowsTheMouse) {
+  Camera c;  // at (0,0,55) looking at the origin, 60 degrees over 512 px
+  const vec3 view = c.look_at - c.position;
+  pan(c, 10.0f, 0.0f);
+  // Dragging right moves the eye left by 10 pixels' worth at the target.
+  const float per_px = 2.0f * 55.0f * std::tan(glm::radians(30.0f)) / 512.0f;
+  EXPECT_NEAR(c.position.x, -10.0f * per_px, 1e-4f);
+  EXPECT_NEAR(c.look_at.x, -10.0f * per_px, 1e-4f);
+  EXPECT_LT(glm::length(c.look_at - c.position - view), 1e-4f);
+}
+
+TEST(CameraControl, DollyScalesDistance) {
+  Camera c;
+  dolly(c, 0.5f);
+  EXPECT_NEAR(c.position.z, 27.5f, 1e-4f);
+  dolly(c, 0.0f);  // never onto the target itself
+  EXPECT_GT(glm::length(c.position - c.look_at), 0.0f);
+}
+
+TEST(FitImage, OneToOneWhenItFits) {
+  const PixelRect r = fit_image({0, 0, 600, 720}, 512, 512);
+  EXPECT_EQ(r.w, 512);
+  EXPECT_EQ(r.h, 512);
+  EXPECT_EQ(r.x, 44);
+  EXPECT_EQ(r.y, 104);
+  const PixelRect z = fit_image({0, 0, 1100, 1100}, 512, 512);  // integer zoom
+  EXPECT_EQ(z.w, 1024);
+  const PixelRect s = fit_image({0, 0, 256, 400}, 512, 512);  // shrink, keep aspect
+  EXPECT_EQ(s.w, 256);
+  EXPECT_EQ(s.h, 256);
+}

@@ -1,0 +1,19 @@
+# Viewer tests (included from tests/CMakeLists.txt when WHISKER_VIEWER is ON).
+
+# Camera moves and edit classification: plain functions, no window.
+add_executable(viewer_logic_tests ${CMAKE_CURRENT_SOURCE_DIR}/viewer_logic_test.cpp)
+target_link_libraries(viewer_logic_tests PRIVATE whisker_viewer GTest::gtest_main)
+gtest_discover_tests(viewer_logic_tests DISCOVERY_TIMEOUT 60)
+
+# The real binary under Xvfb; the tests skip themselves without xvfb-run.
+add_executable(viewer_window_tests ${CMAKE_CURRENT_SOURCE_DIR}/viewer_window_test.cpp)
+target_link_libraries(viewer_window_tests PRIVATE GTest::gtest_main
+  nlohmann_json::nlohmann_json PkgConfig::STB)
+target_compile_definitions(viewer_window_tests PRIVATE
+  WHISKER_BIN="$<TARGET_FILE:whisker>"
+  VIEWER_TEST_OUT="${CMAKE_CURRENT_BINARY_DIR}/viewer_out")
+add_dependencies(viewer_window_tests whisker)
+# One X server at a time: xvfb-run -a races when started in parallel, and the
+# renders share the machine's cores.
+gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
+  PROPERTIES TIMEOUT 600 RESOURCE_LOCK whisker_xvfb LABELS viewer)

@@ -1,0 +1,245 @@
+// The real `whisker` window under Xvfb (Mesa's software OpenGL): what it
+// shows must be the headless render of the same settings, pixel for pixel up
+// to the one-level tolerance explained in compare_render_area().
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#include <stb_image.h>
+#pragma GCC diagnostic pop
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kOut = fs::path(VIEWER_TEST_OUT);
+
+int run(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+bool have_xvfb() { return run("command -v xvfb-run >/dev/null 2>&1") == 0; }
+
+// The viewer in a 1280x800 virtual screen with Mesa's software renderer.
+int run_viewer(const std::string& args, const std::string& log) {
+  return run("xvfb-run -a -s '-screen 0 1280x800x24' env LIBGL_ALWAYS_SOFTWARE=1 '" +
+             std::string(WHISKER_BIN) + "' " + args + " >'" + log + "' 2>&1");
+}
+
+int run_headless(const std::string& args, const std::string& log) {
+  return run("'" + std::string(WHISKER_BIN) + "' --headless --quiet " + args + " >'" +
+             log + "' 2>&1");
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct Rgb8 {
+  int w = 0, h = 0;
+  std::vector<unsigned char> px;
+  const unsigned char* at(int x, int y) const { return &px[(std::size_t(y) * w + x) * 3]; }
+};
+
+Rgb8 load_png(const fs::path& p) {
+  Rgb8 img;
+  int n = 0;
+  unsigned char* data = stbi_load(p.c_str(), &img.w, &img.h, &n, 3);
+  if (data) {
+    img.px.assign(data, data + std::size_t(img.w) * img.h * 3);
+    stbi_image_free(data);
+  }
+  return img;
+}
+
+struct Rect {
+  int x, y, w, h;
+};
+
+Rect render_rect(const nlohmann::json& j) {
+  const auto& r = j.at("render_rect");
+  return {r[0].get<int>(), r[1].get<int>(), r[2].get<int>(), r[3].get<int>()};
+}
+
+struct Diff {
+  int max = 0;          // largest channel difference (8-bit levels)
+  std::size_t off = 0;  // channels that differ at all
+  std::size_t channels = 0;
+};
+
+// Both paths map the same float sums with min(255, L^(1/2.2)) truncated to an
+// integer: the PNG writer in C++ float, the window's shader in GLSL float
+// (llvmpipe's pow). Their last-bit differences can move a value sitting on an
+// integer boundary by one level, so one level is allowed on at most 1e-4 of
+// the channels (measured: 1 to 5 of 786432) and nothing more; a leaked
+// sample, an off-by-one row or the wrong exposure moves far more, by more.
+Diff compare_render_area(const Rgb8& shot, const Rect& r, const Rgb8& ref) {
+  Diff d;
+  for (int y = 0; y < ref.h; ++y)
+    for (int x = 0; x < ref.w; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int a = shot.at(r.x + x, r.y + y)[c], b = ref.at(x, y)[c];
+        const int e = std::abs(a - b);
+        d.max = std::max(d.max, e);
+        d.off += e != 0;
+        ++d.channels;
+      }
+  return d;
+}
+
+// Runs the viewer and the headless mode with the same settings and checks the
+// screenshot's render area against the headless PNG.
+void expect_window_matches_headless(const std::string& name, const std::string& viewer_args,
+                                    const std::string& headless_args, Rgb8* shot_out = nullptr,
+                                    nlohmann::json* summary_out = nullptr) {
+  fs::create_directories(kOut);
+  const fs::path shot = kOut / (name + "-window.png");
+  const fs::path ref = kOut / (name + "-headless.png");
+  fs::remove(shot);
+  fs::remove(ref);
+  ASSERT_EQ(run_viewer(viewer_args + " --screenshot '" + shot.string() + "'",
+                       (kOut / (name + "-window.log")).string()),
+            0)
+      << slurp(kOut / (name + "-window.log"));
+  ASSERT_EQ(run_headless(headless_args + " --out '" + ref.string() + "'",
+                         (kOut / (name + "-headless.log")).string()),
+            0)
+      << slurp(kOut / (name + "-headless.log"));
+
+  const nlohmann::json summary = nlohmann::json::parse(slurp(shot.string() + ".json"));
+  const Rgb8 window = load_png(shot), headless = load_png(ref);
+  ASSERT_GT(window.w, 0) << shot;
+  ASSERT_GT(headless.w, 0) << ref;
+  EXPECT_EQ(window.w, summary["framebuffer"][0].get<int>());
+  EXPECT_EQ(window.h, summary["framebuffer"][1].get<int>());
+  const Rect r = render_rect(summary);
+  // Shown 1:1 so the comparison is per pixel.
+  ASSERT_EQ(r.w, headless.w);
+  ASSERT_EQ(r.h, headless.h);
+  ASSERT_LE(r.x + r.w, window.w);
+  ASSERT_LE(r.y + r.h, window.h);
+
+  const Diff d = compare_render_area(window, r, headless);
+  std::printf("%s: largest difference %d level(s), %zu of %zu channels differ\n",
+              name.c_str(), d.max, d.off, d.channels);
+  EXPECT_LE(d.max, 1) << name;
+  EXPECT_LT(double(d.off) / d.channels, 1e-4) << name << ": " << d.off << " channels differ";
+  if (shot_out) *shot_out = window;
+  if (summary_out) *summary_out = summary;
+}
+
+class ViewerWindow : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run not installed";
+  }
+};
+
+}  // namespace
+
+// One deterministic pass: the render area is the headless image, and the
+// panel is drawn beside it.
+TEST_F(ViewerWindow, ScreenshotShowsRenderAndPanel) {
+  Rgb8 shot;
+  nlohmann::json summary;
+  expect_window_matches_headless("three-balls", "--scene three-balls --frames 1",
+                                 "--scene three-balls --frames 1", &shot, &summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary["spp"].get<int>(), 1);
+  const Rect r = render_rect(summary);
+
+  // Not blank: the room's walls and balls give many distinct colours.
+  std::vector<bool> seen(1 << 15);
+  std::size_t distinct = 0;
+  for (int y = r.y; y < r.y + r.h; ++y)
+    for (int x = r.x; x < r.x + r.w; ++x) {
+      const unsigned char* p = shot.at(x, y);
+      const int key = (p[0] >> 3) << 10 | (p[1] >> 3) << 5 | (p[2] >> 3);
+      if (!seen[key]) seen[key] = true, ++distinct;
+    }
+  EXPECT_GT(distinct, 50u);
+
+  // The panel, right of the render area: ImGui's light text and its blue
+  // widgets (frames, buttons, headers of the dark style) are there.
+  std::size_t text = 0, widgets = 0, panel = 0;
+  for (int y = 0; y < shot.h; ++y)
+    for (int x = r.x + r.w + 4; x < shot.w; ++x) {
+      const unsigned char* p = shot.at(x, y);
+      ++panel;
+      if (p[0] > 180 && p[1] > 180 && p[2] > 180) ++text;
+      if (p[2] > 50 && p[2] > p[0] + 25) ++widgets;
+    }
+  ASSERT_GT(panel, 200u * 400u) << "no room for the panel";
+  EXPECT_GT(text, 2000u) << "panel text missing";
+  EXPECT_GT(widgets, 10000u) << "panel widgets missing";
+}
+
+// Stochastic sampling over several passes (indirect light, Fresnel, jitter):
+// the window shows exactly the accumulated mean the headless mode writes.
+TEST_F(ViewerWindow, AccumulationMatchesHeadless) {
+  const std::string args =
+      "--scene three-balls --indirect on --fresnel on --aa on --frames 4";
+  nlohmann::json summary;
+  expect_window_matches_headless("stochastic", args, args, nullptr, &summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary["spp"].get<int>(), 4);
+  EXPECT_EQ(summary["passes"].get<int>(), 4);
+}
+
+// A light move after 3 passes: the final image equals a fresh render with the
+// new light, so no sample of the old generation leaks into the new one.
+TEST_F(ViewerWindow, ScriptedLightMoveRestartsCleanly) {
+  const std::string common = "--scene diffuse-ball --aa on --indirect on --frames 5";
+  nlohmann::json summary;
+  expect_window_matches_headless("light-move",
+                                 common + " --edit-after 3 --edit-light 15,25,30",
+                                 common + " --light 15,25,30", nullptr, &summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary["generation"].get<int>(), 2) << "one edit, one restart";
+  EXPECT_EQ(summary["spp"].get<int>(), 5);
+
+  // The move must be visible, or the test above would prove nothing.
+  const fs::path old_light = kOut / "light-move-old.png";
+  ASSERT_EQ(run_headless(common + " --out '" + old_light.string() + "'",
+                         (kOut / "light-move-old.log").string()),
+            0);
+  const Rgb8 a = load_png(old_light), b = load_png(kOut / "light-move-headless.png");
+  ASSERT_EQ(a.px.size(), b.px.size());
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < a.px.size(); ++k) changed += std::abs(a.px[k] - b.px[k]) > 8;
+  EXPECT_GT(changed, a.px.size() / 20);
+}
+
+// The default scene (the cat, indirect + AA) after two passes.
+TEST_F(ViewerWindow, CatMatchesHeadless) {
+  expect_window_matches_headless("cat", "--frames 2", "--scene cat --frames 2");
+}
+
+// Without a display the viewer says so, points at --headless and exits 3.
+TEST(ViewerNoDisplay, ExitsWithHint) {
+  fs::create_directories(kOut);
+  const fs::path log = kOut / "no-display.log";
+  const int code = run("env -u DISPLAY -u WAYLAND_DISPLAY '" + std::string(WHISKER_BIN) +
+                       "' --scene three-balls --frames 1 >'" + log.string() + "' 2>&1");
+  EXPECT_EQ(code, 3);
+  EXPECT_NE(slurp(log).find("--headless"), std::string::npos) << slurp(log);
+}
