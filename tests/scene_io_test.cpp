@@ -91,7 +91,7 @@ TEST(SceneFiles, BadFieldsAreNamed) {
       {R"({"light": {"position": [1, 2]}})", "bad.json: light.position: must be an array of 3 numbers"},
       {R"({"light": {"position": [1, "2", 3]}})", "bad.json: light.position[1]: must be a number"},
       {R"({"light": {"intensity": -5}})", "bad.json: light.intensity: must be in [0"},
-      {R"({"light": {"intensity": 1e999}})", "bad.json: light.intensity: must be finite"},
+      {R"({"light": {"intensity": 1e999}})", "bad.json: invalid JSON: number overflow parsing '1e999'"},
       {R"({"camera": {"up": [0, 0, 0]}})", "bad.json: camera.up: must not be zero-length"},
       {R"({"camera": {"width": 0}})", "bad.json: camera.width: must be in [1, 16384]"},
       {R"({"camera": {"width": 1.5}})", "bad.json: camera.width: must be an integer"},

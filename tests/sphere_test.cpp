@@ -74,12 +74,15 @@ TEST(Sphere, HitMissTangentInside) {
 }
 
 // Hits on the walls (radius 940-990, centres 1000 away) from points in the
-// room, against the long-double reference: relative error of t below 1e-5
-// (the classical b^2 - 4ac form in float loses far more at grazing angles).
+// room, against the long-double reference. Stated bounds: the float test
+// (which only picks the closest sphere) within 2e-4 relative even at the
+// grazing angles along the floor, where the float discriminant's absolute
+// error ~ eps |f|^2 dominates; the double refinement used for shading within
+// 1e-6 (a float ULP of t plus the rounding of the float ray it was given).
 TEST(Sphere, WallHitsMatchLongDouble) {
   std::mt19937 g(1);
   std::uniform_real_distribution<float> u(-50.0f, 50.0f);
-  double worst = 0.0;
+  double worst_float = 0.0, worst_refined = 0.0;
   int hits = 0;
   for (const Sphere& s : report_spheres()) {
     if (s.radius < 100.0f) continue;
@@ -94,11 +97,14 @@ TEST(Sphere, WallHitsMatchLongDouble) {
       // Grazing rays within float rounding of the silhouette may go either way.
       if (t == kInf) continue;
       ++hits;
-      worst = std::max(worst, double(std::fabs((long double)t - ref) / ref));
+      worst_float = std::max(worst_float, double(std::fabs((long double)t - ref) / ref));
+      const double tr = refine_sphere_t(s, r, t);
+      worst_refined = std::max(worst_refined, double(std::fabs((long double)tr - ref) / ref));
     }
   }
   EXPECT_GT(hits, 10000);
-  EXPECT_LT(worst, 1e-5) << "worst relative error of t";
+  EXPECT_LT(worst_float, 2e-4) << "float screening test";
+  EXPECT_LT(worst_refined, 1e-6) << "double refinement";
 }
 
 // Rays spawned from hit points on every sphere, in all directions, never hit
@@ -120,7 +126,7 @@ TEST(Sphere, SpawnedRaysNeverReHitTheirSurface) {
       const float t = intersect_sphere(s, primary);
       if (t == kInf) continue;
       ++tested;
-      const vec3 p = sphere_hit_point(s, primary, t);
+      const vec3 p = sphere_hit_point(s, primary, refine_sphere_t(s, primary, t));
       const vec3 ng = sphere_normal(s, p);
       const vec3 d = uniform_direction(g);
       const Ray spawned = spawn_ray(p, ng, d);
@@ -156,7 +162,7 @@ TEST(Sphere, HitPointIsOnTheSurface) {
                                                     std::uniform_real_distribution<float>(-1, 1)(g)))};
     const float t = intersect_sphere(wall, r);
     ASSERT_NE(t, kInf);
-    const vec3 p = sphere_hit_point(wall, r, t);
+    const vec3 p = sphere_hit_point(wall, r, refine_sphere_t(wall, r, t));
     const long double dx = p.x, dy = (long double)p.y + 1000.0L, dz = p.z;
     const long double dist = std::sqrt(dx * dx + dy * dy + dz * dz) - 990.0L;
     EXPECT_LT(std::fabs(dist), 8 * 6.2e-5L);  // 8 ULPs of 990

@@ -81,7 +81,9 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
   out.t = hit.t;
   if (hit.kind == PrimKind::Sphere) {
     const Sphere& s = spheres_[hit.prim];
-    out.p = sphere_hit_point(s, ray, hit.t);
+    const double t = refine_sphere_t(s, ray, hit.t);
+    out.t = float(t);
+    out.p = sphere_hit_point(s, ray, t);
     out.ng = sphere_normal(s, out.p);
     out.ns = out.ng;
     out.material = &sphere_material_[hit.prim];

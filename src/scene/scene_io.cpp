@@ -236,6 +236,10 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     if (auto colon = msg.find(": "); colon != std::string::npos) msg = msg.substr(colon + 2);
     throw SceneError(file + ":" + line_column(text, e.byte ? e.byte - 1 : 0) +
                      ": invalid JSON: " + msg);
+  } catch (const json::exception& e) {
+    std::string msg = e.what();  // e.g. a number too large for a double
+    if (auto bracket = msg.find("] "); bracket != std::string::npos) msg = msg.substr(bracket + 2);
+    throw SceneError(file + ": invalid JSON: " + msg);
   }
 
   Scene scene;

@@ -323,7 +323,8 @@ int run_viewer(const ViewerOptions& opt) {
         glfwPollEvents();
       const double t0 = glfwGetTime();
 
-      if (renderer.snapshot(s.snap)) {
+      static double T[6]; static int NF=0; double ta=glfwGetTime();
+      if (renderer.snapshot(s.snap)) { T[5]+=glfwGetTime()-ta; NF++;
         display.upload(s.snap, s.display.mode == 1);
         s.rse = s.snap.relative_standard_error();
       }
@@ -401,16 +402,18 @@ int run_viewer(const ViewerOptions& opt) {
         glfwSetWindowTitle(window, title.c_str());
       }
 
+      double tb=glfwGetTime(); T[0]+=tb-t0;
       ImGui::Render();
       glViewport(0, 0, fb_w, fb_h);
       glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT);
       s.display.exposure = report_exposure() * std::exp2(s.exposure_stops);
-      display.draw(rect, fb_h, float(s.snap.spp), s.display);
+      glFinish(); double tc=glfwGetTime(); T[1]+=tc-tb;
+      display.draw(rect, fb_h, float(s.snap.spp), s.display); glFinish(); double td=glfwGetTime(); T[2]+=td-tc;
       glViewport(0, 0, fb_w, fb_h);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-      const double t_work = glfwGetTime();
+      glFinish(); const double t_work = glfwGetTime(); T[3]+=t_work-td;
       if (finish && !opt.screenshot_path.empty()) {
         const auto pixels = read_framebuffer(fb_w, fb_h);
         if (!write_png_rgb8(opt.screenshot_path, fb_w, fb_h, pixels)) {
@@ -420,7 +423,8 @@ int run_viewer(const ViewerOptions& opt) {
         write_summary(opt.screenshot_path + ".json", rect, s, fstats, fb_w, fb_h);
       }
       glfwSwapBuffers(window);
-      const double t1 = glfwGetTime();
+      const double t1 = glfwGetTime(); T[4]+=t1-t_work;
+      if (finish) fprintf(stderr,"pre %.2f clear %.2f img %.2f imgui %.2f swap %.2f snap %.2f (n %d)\n", T[0]*1e3/fstats.total_ms.size(),T[1]*1e3/fstats.total_ms.size(),T[2]*1e3/fstats.total_ms.size(),T[3]*1e3/fstats.total_ms.size(),T[4]*1e3/fstats.total_ms.size(), T[5]*1e3/NF, NF);
       fstats.work_ms.push_back(float((t_work - t0) * 1e3));
       fstats.total_ms.push_back(float((t1 - t0) * 1e3));
       // The panel shows a running mean over the last ~second of frames.

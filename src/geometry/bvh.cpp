@@ -1,0 +1,115 @@
+// Bvh: the four selectable methods behind one interface (see bvh.h).
+#include "geometry/bvh.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "geometry/bvh_build.h"
+
+namespace whisker {
+namespace {
+
+// Leaves of the binary SAH tree hold at most one packet.
+constexpr std::uint32_t kSahMaxLeaf = kWidth;
+
+// The report's loop over every triangle (its figure 7), keeping the nearest.
+bool brute_intersect(const std::vector<Triangle>& tris, const Ray& ray, Hit& hit) {
+  const WatertightRay w(ray);
+  float best = std::min(ray.tmax, hit.t);
+  bool found = false;
+  for (std::size_t i = 0; i < tris.size(); ++i) {
+    float t, u, v;
+    if (intersect_triangle(w, tris[i], ray.tmin, best, t, u, v)) {
+      best = t;
+      hit.t = t;
+      hit.kind = PrimKind::Triangle;
+      hit.prim = static_cast<std::uint32_t>(i);
+      hit.u = u;
+      hit.v = v;
+      found = true;
+    }
+  }
+  return found;
+}
+
+bool brute_occluded(const std::vector<Triangle>& tris, const Ray& ray) {
+  const WatertightRay w(ray);
+  for (const Triangle& tri : tris) {
+    float t, u, v;
+    if (intersect_triangle(w, tri, ray.tmin, ray.tmax, t, u, v)) return true;
+  }
+  return false;
+}
+
+// Slab test of one box, conservative as in bvh_wide.cpp.
+bool box_hit(const Box3& b, const Ray& ray, float tmax) {
+  float tn = ray.tmin, tf = kInf;
+  for (int a = 0; a < 3; ++a) {
+    float d = ray.d[a];
+    if (std::fabs(d) < 1e-30f) d = std::copysign(1e-30f, d);
+    const float inv = 1.0f / d;
+    const float t0 = (b.lo[a] - ray.o[a]) * inv, t1 = (b.hi[a] - ray.o[a]) * inv;
+    tn = std::max(tn, std::min(t0, t1));
+    tf = std::min(tf, std::max(t0, t1));
+  }
+  return tn <= std::min(tf * (1.0f + 4e-7f), tmax);
+}
+
+}  // namespace
+
+Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
+  const auto start = std::chrono::steady_clock::now();
+  Bvh b;
+  b.kind_ = kind;
+  b.tri_count_ = tris.size();
+  switch (kind) {
+    case AccelKind::Brute:
+      b.tris_ = std::move(tris);
+      break;
+    case AccelKind::BBox:
+      for (const Triangle& t : tris) b.box_.grow(bounds_of(t));
+      b.tris_ = std::move(tris);
+      b.node_count_ = 1;
+      break;
+    case AccelKind::Midpoint:
+    case AccelKind::Sah: {
+      const BinaryBvh bin = kind == AccelKind::Sah ? build_binary_sah(tris, kSahMaxLeaf)
+                                                   : build_binary_midpoint(tris);
+      b.wide_ = collapse_to_wide(bin, tris);
+      b.node_count_ = b.wide_.nodes.size();
+      break;
+    }
+  }
+  b.build_seconds_ =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return b;
+}
+
+bool Bvh::intersect(const Ray& ray, Hit& hit) const {
+  switch (kind_) {
+    case AccelKind::Brute:
+      return brute_intersect(tris_, ray, hit);
+    case AccelKind::BBox:
+      return box_hit(box_, ray, std::min(ray.tmax, hit.t)) && brute_intersect(tris_, ray, hit);
+    default:
+      return wide_.intersect(ray, hit);
+  }
+}
+
+bool Bvh::occluded(const Ray& ray) const {
+  switch (kind_) {
+    case AccelKind::Brute:
+      return brute_occluded(tris_, ray);
+    case AccelKind::BBox:
+      return box_hit(box_, ray, ray.tmax) && brute_occluded(tris_, ray);
+    default:
+      return wide_.occluded(ray);
+  }
+}
+
+std::size_t Bvh::bytes() const {
+  return tris_.size() * sizeof(Triangle) + wide_.nodes.size() * sizeof(WideNode) +
+         wide_.packets.size() * sizeof(TriPacket);
+}
+
+}  // namespace whisker

@@ -1,0 +1,48 @@
+// Bounding volume hierarchy over triangles.
+//
+// Sah and Midpoint build a binary tree (bvh_build.h), then collapse it into an
+// 8-wide tree (bvh_wide.h): one node holds the boxes of up to 8 children in
+// SIMD layout, a leaf is a run of 8-triangle packets. Brute and BBox keep the
+// report's plain triangle loop (its figure 7 and its one-box step).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "geometry/bvh_wide.h"
+#include "geometry/ray.h"
+#include "geometry/triangle.h"
+#include "scene/scene.h"
+
+namespace whisker {
+
+class Bvh {
+ public:
+  Bvh() = default;
+  // Builds over `tris` with the chosen method (brute force, one box, the
+  // report's longest-axis barycentre split, binned SAH).
+  static Bvh build(std::vector<Triangle> tris, AccelKind kind);
+
+  // Closest hit in (ray.tmin, min(ray.tmax, hit.t)): fills hit (t, kind =
+  // Triangle, prim = index into the triangles given to build, u, v) and
+  // returns true if it found one closer than hit.t.
+  bool intersect(const Ray& ray, Hit& hit) const;
+  // Any hit in (ray.tmin, ray.tmax).
+  bool occluded(const Ray& ray) const;
+
+  std::size_t triangle_count() const { return tri_count_; }
+  std::size_t node_count() const { return node_count_; }
+  std::size_t bytes() const;
+  double build_seconds() const { return build_seconds_; }
+
+ private:
+  AccelKind kind_ = AccelKind::Brute;
+  std::vector<Triangle> tris_;  // Brute and BBox only
+  Box3 box_;                    // BBox only
+  WideBvh wide_;                // Midpoint and Sah
+  std::size_t tri_count_ = 0;
+  std::size_t node_count_ = 0;
+  double build_seconds_ = 0.0;
+};
+
+}  // namespace whisker

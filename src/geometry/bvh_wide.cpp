@@ -1,0 +1,439 @@
+// The 8-wide BVH: collapse from a binary tree, and single-ray traversal.
+#include "geometry/bvh_wide.h"
+
+#include <cmath>
+#include <cstring>
+
+#include "geometry/bvh_build.h"
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define WHISKER_BVH_AVX2 1
+#endif
+
+namespace whisker {
+
+// ---------------------------------------------------------------- collapse --
+
+namespace {
+
+struct Collapser {
+  const BinaryBvh& bin;
+  const std::vector<Triangle>& tris;
+  WideBvh out;
+
+  std::uint32_t leaf_ref(const BinaryNode& n) {
+    const std::uint32_t first = static_cast<std::uint32_t>(out.packets.size());
+    const std::uint32_t count = (n.count + kWidth - 1) / kWidth;
+    for (std::uint32_t p = 0; p < count; ++p) {
+      TriPacket pk;
+      std::memset(&pk, 0, sizeof pk);
+      for (int lane = 0; lane < kWidth; ++lane) {
+        const std::uint32_t i = p * kWidth + lane;
+        if (i >= n.count) break;
+        const std::uint32_t prim = bin.prims[n.first + i];
+        const Triangle& t = tris[prim];
+        const vec3* vs[3] = {&t.v0, &t.v1, &t.v2};
+        for (int v = 0; v < 3; ++v)
+          for (int a = 0; a < 3; ++a) pk.v[v][a][lane] = (*vs[v])[a];
+        pk.prim[lane] = prim;
+      }
+      out.packets.push_back(pk);
+    }
+    return kLeafBit | ((count - 1) << 24) | first;
+  }
+
+  std::uint32_t node(std::uint32_t b) {
+    const std::uint32_t idx = static_cast<std::uint32_t>(out.nodes.size());
+    out.nodes.emplace_back();
+    std::uint32_t kids[kWidth];
+    int n = 0;
+    if (bin.nodes[b].leaf()) {
+      kids[n++] = b;
+    } else {
+      kids[n++] = bin.nodes[b].left;
+      kids[n++] = bin.nodes[b].right;
+    }
+    while (n < kWidth) {
+      int open = -1;
+      float best = -1.0f;
+      for (int i = 0; i < n; ++i) {
+        const BinaryNode& k = bin.nodes[kids[i]];
+        if (!k.leaf() && k.box.half_area() > best) {
+          best = k.box.half_area();
+          open = i;
+        }
+      }
+      if (open < 0) break;
+      const BinaryNode& k = bin.nodes[kids[open]];
+      kids[open] = k.left;
+      kids[n++] = k.right;
+    }
+    std::uint32_t refs[kWidth];
+    for (int i = 0; i < n; ++i) {
+      const BinaryNode& k = bin.nodes[kids[i]];
+      refs[i] = k.leaf() ? leaf_ref(k) : node(kids[i]);
+    }
+    WideNode& w = out.nodes[idx];  // after the recursion: the vector may have grown
+    for (int i = 0; i < kWidth; ++i) {
+      const bool used = i < n;
+      const Box3 box = used ? bin.nodes[kids[i]].box : Box3{};
+      for (int a = 0; a < 3; ++a) {
+        w.lo[a][i] = box.lo[a];
+        w.hi[a][i] = box.hi[a];
+      }
+      w.child[i] = used ? refs[i] : kEmptyRef;
+    }
+    return idx;
+  }
+};
+
+}  // namespace
+
+WideBvh collapse_to_wide(const BinaryBvh& bin, const std::vector<Triangle>& tris) {
+  Collapser c{bin, tris, {}};
+  if (!bin.nodes.empty()) c.node(0);
+  return std::move(c.out);
+}
+
+// --------------------------------------------------------------- traversal --
+
+namespace {
+
+// Robust slab test (Ize, "Robust BVH Ray Traversal", JCGT 2013): the far
+// distance grows by 1 + 2 gamma(3), gamma(n) = n u / (1 - n u), to cover the
+// three roundings of (b - o) * (1 / d), so a ray through a shared edge is
+// never culled by both boxes.
+constexpr float kFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
+
+// 1/d with zero components replaced by a tiny signed value: (b - o) * (1/d)
+// stays finite (no 0 * inf), and the sign picks the near plane.
+inline float safe_inv(float d) {
+  const float tiny = 1e-30f;
+  if (std::fabs(d) < tiny) d = std::copysign(tiny, d);
+  return 1.0f / d;
+}
+
+constexpr int kStackSize = 512;  // 7 entries per level, depth <= 72 (bvh_build.cpp)
+
+struct StackEntry {
+  std::uint32_t ref;
+  float t;
+};
+
+#ifdef WHISKER_BVH_AVX2
+
+struct RayAvx {
+  __m256 ox, oy, oz, ix, iy, iz;
+  int near_x, near_y, near_z;  // offsets (in floats) of the near-plane rows
+  int far_x, far_y, far_z;
+  // Watertight test, in the permuted axes of WatertightRay.
+  int kx, ky, kz;
+  __m256 okx, oky, okz, sx, sy, sz;
+
+  explicit RayAvx(const Ray& r) {
+    const WatertightRay w(r);
+    const float inv[3] = {safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)};
+    ox = _mm256_set1_ps(r.o.x);
+    oy = _mm256_set1_ps(r.o.y);
+    oz = _mm256_set1_ps(r.o.z);
+    ix = _mm256_set1_ps(inv[0]);
+    iy = _mm256_set1_ps(inv[1]);
+    iz = _mm256_set1_ps(inv[2]);
+    // lo[a] starts at float offset a*8, hi[a] at 24 + a*8.
+    near_x = inv[0] >= 0.0f ? 0 : 24;
+    near_y = inv[1] >= 0.0f ? 8 : 32;
+    near_z = inv[2] >= 0.0f ? 16 : 40;
+    far_x = near_x < 24 ? near_x + 24 : near_x - 24;
+    far_y = near_y < 24 ? near_y + 24 : near_y - 24;
+    far_z = near_z < 24 ? near_z + 24 : near_z - 24;
+    kx = w.kx;
+    ky = w.ky;
+    kz = w.kz;
+    okx = _mm256_set1_ps(r.o[kx]);
+    oky = _mm256_set1_ps(r.o[ky]);
+    okz = _mm256_set1_ps(r.o[kz]);
+    sx = _mm256_set1_ps(w.sx);
+    sy = _mm256_set1_ps(w.sy);
+    sz = _mm256_set1_ps(w.sz);
+  }
+};
+
+// Slab test of the 8 children: bit i of the result set when child i is
+// entered within [tmin, tmax]; tnear receives the entry distances.
+inline unsigned box_test(const RayAvx& r, const WideNode& n, __m256 tmin, __m256 tmax,
+                         __m256& tnear) {
+  const float* base = &n.lo[0][0];
+  const __m256 nx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_x), r.ox), r.ix);
+  const __m256 ny = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_y), r.oy), r.iy);
+  const __m256 nz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_z), r.oz), r.iz);
+  const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_x), r.ox), r.ix);
+  const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_y), r.oy), r.iy);
+  const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_z), r.oz), r.iz);
+  tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin));
+  const __m256 tfar = _mm256_min_ps(
+      _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(kFarScale)), tmax);
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ)));
+}
+
+// The watertight test of triangle.h on 8 triangles, operation for operation
+// (same fused multiply-adds), so it returns the same t, u, v bit for bit.
+// Returns the lanes hit within (tmin, tmax).
+inline unsigned tri_test(const RayAvx& r, const TriPacket& p, __m256 tmin, __m256 tmax,
+                         __m256& t, __m256& e1, __m256& e2, __m256& inv) {
+  __m256 X[3], Y[3], Z[3];
+  for (int j = 0; j < 3; ++j) {
+    const __m256 px = _mm256_sub_ps(_mm256_load_ps(p.v[j][r.kx]), r.okx);
+    const __m256 py = _mm256_sub_ps(_mm256_load_ps(p.v[j][r.ky]), r.oky);
+    const __m256 pz = _mm256_sub_ps(_mm256_load_ps(p.v[j][r.kz]), r.okz);
+    X[j] = _mm256_fnmadd_ps(r.sx, pz, px);
+    Y[j] = _mm256_fnmadd_ps(r.sy, pz, py);
+    Z[j] = _mm256_mul_ps(r.sz, pz);
+  }
+  // diff_of_products(a, b, c, d) = a*b - c*d with an exact sign.
+  auto dop = [](__m256 a, __m256 b, __m256 c, __m256 d) {
+    const __m256 cd = _mm256_mul_ps(c, d);
+    const __m256 err = _mm256_fnmadd_ps(c, d, cd);
+    return _mm256_add_ps(_mm256_fmsub_ps(a, b, cd), err);
+  };
+  const __m256 e0 = dop(X[2], Y[1], Y[2], X[1]);
+  e1 = dop(X[0], Y[2], Y[0], X[2]);
+  e2 = dop(X[1], Y[0], Y[1], X[0]);
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_LT_OQ),
+                                               _mm256_cmp_ps(e1, zero, _CMP_LT_OQ)),
+                                  _mm256_cmp_ps(e2, zero, _CMP_LT_OQ));
+  const __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_GT_OQ),
+                                               _mm256_cmp_ps(e1, zero, _CMP_GT_OQ)),
+                                  _mm256_cmp_ps(e2, zero, _CMP_GT_OQ));
+  const unsigned mixed = static_cast<unsigned>(_mm256_movemask_ps(_mm256_and_ps(neg, pos)));
+  if (mixed == 0xffu) return 0;  // the common case: all 8 missed
+  const __m256 det = _mm256_add_ps(_mm256_add_ps(e0, e1), e2);
+  const __m256 tt = _mm256_fmadd_ps(e2, Z[2], _mm256_fmadd_ps(e1, Z[1], _mm256_mul_ps(e0, Z[0])));
+  inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+  t = _mm256_mul_ps(tt, inv);
+  const __m256 ok = _mm256_and_ps(
+      _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ), _mm256_cmp_ps(t, tmin, _CMP_GT_OQ)),
+      _mm256_cmp_ps(t, tmax, _CMP_LT_OQ));
+  return static_cast<unsigned>(_mm256_movemask_ps(ok)) & ~mixed;
+}
+
+inline float lane(__m256 v, unsigned i) {
+  alignas(32) float a[kWidth];
+  _mm256_store_ps(a, v);
+  return a[i];
+}
+
+#endif  // WHISKER_BVH_AVX2
+
+inline bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
+inline std::uint32_t leaf_first(std::uint32_t ref) { return ref & 0xffffffu; }
+inline std::uint32_t leaf_packets(std::uint32_t ref) { return ((ref >> 24) & 0x7fu) + 1; }
+
+}  // namespace
+
+#ifdef WHISKER_BVH_AVX2
+
+bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
+  if (nodes.empty()) return false;
+  const RayAvx r(ray);
+  const __m256 tmin = _mm256_set1_ps(ray.tmin);
+  float best = std::min(ray.tmax, hit.t);
+  __m256 tmax = _mm256_set1_ps(best);
+  bool found = false;
+  std::uint32_t best_prim = 0;
+  float best_u = 0.0f, best_v = 0.0f;
+
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  std::uint32_t ref = 0;
+  for (;;) {
+    if (!is_leaf(ref)) {
+      const WideNode& n = nodes[ref];
+      __m256 tnear;
+      unsigned mask = box_test(r, n, tmin, tmax, tnear);
+      if (mask != 0) {
+        const unsigned first = static_cast<unsigned>(__builtin_ctz(mask));
+        mask &= mask - 1;
+        if (mask == 0) {
+          ref = n.child[first];
+          continue;
+        }
+        // Several children: visit the nearest first, stack the rest far to
+        // near so the nearest of them pops next (front-to-back order).
+        alignas(32) float dist[kWidth];
+        _mm256_store_ps(dist, tnear);
+        StackEntry e[kWidth];
+        int k = 0;
+        e[k++] = {n.child[first], dist[first]};
+        while (mask) {
+          const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
+          mask &= mask - 1;
+          // Insertion sort, descending by distance.
+          StackEntry x{n.child[i], dist[i]};
+          int j = k++;
+          while (j > 0 && e[j - 1].t < x.t) {
+            e[j] = e[j - 1];
+            --j;
+          }
+          e[j] = x;
+        }
+        for (int j = 0; j < k - 1; ++j) stack[sp++] = e[j];
+        ref = e[k - 1].ref;
+        continue;
+      }
+    } else {
+      const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
+      for (std::uint32_t p = first; p < first + count; ++p) {
+        __m256 t, e1, e2, inv;
+        unsigned mask = tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv);
+        if (mask == 0) continue;
+        alignas(32) float ts[kWidth];
+        _mm256_store_ps(ts, t);
+        unsigned bi = static_cast<unsigned>(__builtin_ctz(mask));
+        for (mask &= mask - 1; mask; mask &= mask - 1) {
+          const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
+          if (ts[i] < ts[bi]) bi = i;
+        }
+        best = ts[bi];
+        tmax = _mm256_set1_ps(best);
+        const float iv = lane(inv, bi);
+        best_u = lane(e1, bi) * iv;
+        best_v = lane(e2, bi) * iv;
+        best_prim = packets[p].prim[bi];
+        found = true;
+      }
+    }
+    // Pop the next node that may still hold a closer hit.
+    for (;;) {
+      if (sp == 0) goto done;
+      const StackEntry& e = stack[--sp];
+      if (e.t <= best) {
+        ref = e.ref;
+        break;
+      }
+    }
+  }
+done:
+  if (!found) return false;
+  hit.t = best;
+  hit.kind = PrimKind::Triangle;
+  hit.prim = best_prim;
+  hit.u = best_u;
+  hit.v = best_v;
+  return true;
+}
+
+bool WideBvh::occluded(const Ray& ray) const {
+  if (nodes.empty()) return false;
+  const RayAvx r(ray);
+  const __m256 tmin = _mm256_set1_ps(ray.tmin);
+  const __m256 tmax = _mm256_set1_ps(ray.tmax);
+  std::uint32_t stack[kStackSize];
+  int sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0) {
+    const std::uint32_t ref = stack[--sp];
+    if (!is_leaf(ref)) {
+      const WideNode& n = nodes[ref];
+      __m256 tnear;
+      for (unsigned mask = box_test(r, n, tmin, tmax, tnear); mask; mask &= mask - 1)
+        stack[sp++] = n.child[__builtin_ctz(mask)];
+    } else {
+      const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
+      for (std::uint32_t p = first; p < first + count; ++p) {
+        __m256 t, e1, e2, inv;
+        if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+#else  // portable fallback: the same traversal one child / triangle at a time
+
+namespace {
+
+struct RayScalar {
+  WatertightRay w;
+  vec3 o, inv;
+  explicit RayScalar(const Ray& r)
+      : w(r), o(r.o), inv(safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)) {}
+};
+
+inline bool child_test(const RayScalar& r, const WideNode& n, int i, float tmin, float tmax,
+                       float& tnear) {
+  float tn = tmin, tf = kInf;
+  for (int a = 0; a < 3; ++a) {
+    const float lo = n.lo[a][i], hi = n.hi[a][i];
+    const float near = r.inv[a] >= 0.0f ? lo : hi, far = r.inv[a] >= 0.0f ? hi : lo;
+    tn = std::max(tn, (near - r.o[a]) * r.inv[a]);
+    tf = std::min(tf, (far - r.o[a]) * r.inv[a]);
+  }
+  tnear = tn;
+  return tn <= std::min(tf * kFarScale, tmax);
+}
+
+inline Triangle packet_tri(const TriPacket& p, int i) {
+  return Triangle{vec3(p.v[0][0][i], p.v[0][1][i], p.v[0][2][i]),
+                  vec3(p.v[1][0][i], p.v[1][1][i], p.v[1][2][i]),
+                  vec3(p.v[2][0][i], p.v[2][1][i], p.v[2][2][i])};
+}
+
+}  // namespace
+
+bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
+  if (nodes.empty()) return false;
+  const RayScalar r(ray);
+  float best = std::min(ray.tmax, hit.t);
+  bool found = false;
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  stack[sp++] = {0, ray.tmin};
+  while (sp > 0) {
+    const StackEntry e = stack[--sp];
+    if (e.t > best) continue;
+    if (!is_leaf(e.ref)) {
+      const WideNode& n = nodes[e.ref];
+      StackEntry s[kWidth];
+      int k = 0;
+      for (int i = 0; i < kWidth; ++i) {
+        float tn;
+        if (n.child[i] != kEmptyRef && child_test(r, n, i, ray.tmin, best, tn)) {
+          int j = k++;
+          while (j > 0 && s[j - 1].t < tn) {
+            s[j] = s[j - 1];
+            --j;
+          }
+          s[j] = {n.child[i], tn};
+        }
+      }
+      for (int j = 0; j < k; ++j) stack[sp++] = s[j];
+    } else {
+      for (std::uint32_t p = leaf_first(e.ref); p < leaf_first(e.ref) + leaf_packets(e.ref); ++p)
+        for (int i = 0; i < kWidth; ++i) {
+          float t, u, v;
+          if (intersect_triangle(r.w, packet_tri(packets[p], i), ray.tmin, best, t, u, v)) {
+            best = t;
+            hit.t = t;
+            hit.kind = PrimKind::Triangle;
+            hit.prim = packets[p].prim[i];
+            hit.u = u;
+            hit.v = v;
+            found = true;
+          }
+        }
+    }
+  }
+  return found;
+}
+
+bool WideBvh::occluded(const Ray& ray) const {
+  Hit h;
+  h.t = ray.tmax;
+  return intersect(ray, h);
+}
+
+#endif
+
+}  // namespace whisker

@@ -1,0 +1,209 @@
+// OBJ loading: a validating line scan that names the file and line of bad
+// input, then tinyobjloader for the parse and polygon triangulation.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string_view>
+
+#include <tiny_obj_loader.h>
+
+#include "geometry/mesh.h"
+
+namespace whisker {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, std::size_t line, const std::string& what) {
+  std::ostringstream m;
+  m << path;
+  if (line > 0) m << ":" << line;
+  m << ": " << what;
+  throw MeshError(m.str());
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::string_view next_token(std::string_view& s) {
+  s = trim(s);
+  std::size_t n = 0;
+  while (n < s.size() && s[n] != ' ' && s[n] != '\t') ++n;
+  const std::string_view tok = s.substr(0, n);
+  s.remove_prefix(n);
+  return tok;
+}
+
+// Keywords of the OBJ format (and its free-form geometry statements, which we
+// accept and ignore as tinyobjloader does).
+bool known_keyword(std::string_view k) {
+  static constexpr std::string_view kKeys[] = {
+      "v", "vn", "vt", "vp", "f", "l", "p", "g", "o", "s", "usemtl", "mtllib", "cstype",
+      "deg", "bmat", "step", "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp",
+      "end", "con", "mg", "bevel", "c_interp", "d_interp", "lod", "shadow_obj", "trace_obj",
+      "ctech", "stech", "t"};
+  for (std::string_view key : kKeys)
+    if (k == key) return true;
+  return false;
+}
+
+struct Scan {
+  std::size_t vertices = 0, faces = 0;
+  long max_index = 0;            // largest positive vertex index seen
+  std::size_t max_index_line = 0;
+  std::vector<std::string> mtllibs;
+};
+
+// Checks every line: known keyword, finite numeric vertex coordinates, face
+// indices in range (negative ones relative to the vertices read so far).
+Scan scan(const std::string& path, const std::string& text) {
+  Scan s;
+  std::size_t line_no = 0, pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    for (char ch : line) {
+      const unsigned char c = static_cast<unsigned char>(ch);
+      if (c == 0 || (c < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+        fail(path, line_no, "binary data, not a text OBJ file");
+    }
+    std::string_view rest = line;
+    const std::size_t hash = rest.find('#');
+    if (hash != std::string_view::npos) rest = rest.substr(0, hash);
+    const std::string_view key = next_token(rest);
+    if (key.empty()) continue;
+    if (!known_keyword(key))
+      fail(path, line_no, "unrecognised line '" + std::string(trim(line.substr(0, 40))) + "'");
+    if (key == "v") {
+      for (int i = 0; i < 3; ++i) {
+        const std::string tok(next_token(rest));
+        char* e = nullptr;
+        const float x = tok.empty() ? 0.0f : std::strtof(tok.c_str(), &e);
+        if (tok.empty() || e != tok.c_str() + tok.size())
+          fail(path, line_no, "vertex needs three numbers");
+        if (!std::isfinite(x)) fail(path, line_no, "vertex coordinate is NaN or infinite");
+      }
+      ++s.vertices;
+    } else if (key == "f") {
+      int corners = 0;
+      for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {
+        const std::string idx(tok.substr(0, tok.find('/')));
+        char* e = nullptr;
+        const long v = std::strtol(idx.c_str(), &e, 10);
+        if (idx.empty() || e != idx.c_str() + idx.size())
+          fail(path, line_no, "face index '" + std::string(tok) + "' is not a number");
+        if (v == 0 || (v < 0 && static_cast<std::size_t>(-v) > s.vertices))
+          fail(path, line_no, "face index " + idx + " out of range (" +
+                                  std::to_string(s.vertices) + " vertices so far)");
+        if (v > s.max_index) {
+          s.max_index = v;
+          s.max_index_line = line_no;
+        }
+        ++corners;
+      }
+      if (corners < 3) fail(path, line_no, "face with fewer than 3 vertices");
+      ++s.faces;
+    } else if (key == "mtllib") {
+      s.mtllibs.emplace_back(trim(rest));
+    }
+  }
+  if (s.max_index > 0 && static_cast<std::size_t>(s.max_index) > s.vertices)
+    fail(path, s.max_index_line, "face index " + std::to_string(s.max_index) +
+                                     " out of range (" + std::to_string(s.vertices) +
+                                     " vertices)");
+  if (s.faces == 0) fail(path, 0, "no faces (empty or not an OBJ mesh)");
+  return s;
+}
+
+}  // namespace
+
+TriangleMesh load_obj(const std::string& path, float scale, const vec3& translate) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, 0, "cannot open file");
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  if (text.empty()) fail(path, 0, "file is empty");
+  const Scan s = scan(path, text);
+
+  TriangleMesh mesh;
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  for (const std::string& lib : s.mtllibs)
+    if (!std::filesystem::exists(dir / lib))
+      mesh.warnings.push_back(path + ": material library '" + lib +
+                              "' not found; materials ignored");
+
+  // Materials come from the scene file, so the library is never read.
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromString(text, std::string(), config))
+    fail(path, 0, "tinyobjloader: " + reader.Error());
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+
+  const std::size_t nv = attrib.vertices.size() / 3;
+  mesh.positions.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
+    mesh.positions[i] = p * scale + translate;
+    if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
+        !std::isfinite(mesh.positions[i].z))
+      fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
+  }
+  const std::size_t nn = attrib.normals.size() / 3;
+  mesh.normals.resize(nn);
+  for (std::size_t i = 0; i < nn; ++i)
+    mesh.normals[i] = vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+
+  bool all_normals = nn > 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& idx = shape.mesh.indices;
+    std::size_t at = 0;
+    for (unsigned char fv : shape.mesh.num_face_vertices) {
+      if (fv != 3) fail(path, 0, "tinyobjloader left a face with " + std::to_string(fv) + " vertices");
+      glm::uvec3 tri, nrm;
+      bool ok = true, has_n = true;
+      for (int k = 0; k < 3; ++k) {
+        const int vi = idx[at + k].vertex_index, ni = idx[at + k].normal_index;
+        if (vi < 0 || static_cast<std::size_t>(vi) >= nv) ok = false;
+        if (ni < 0 || static_cast<std::size_t>(ni) >= nn) has_n = false;
+        tri[k] = static_cast<unsigned>(vi);
+        nrm[k] = static_cast<unsigned>(ni);
+      }
+      at += 3;
+      if (!ok) fail(path, 0, "face index out of range");
+      // Zero area: the cross product of two edges, exact enough in double.
+      const glm::dvec3 p0(mesh.positions[tri[0]]), p1(mesh.positions[tri[1]]),
+          p2(mesh.positions[tri[2]]);
+      const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
+      const glm::dvec3 c(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                         e1.x * e2.y - e1.y * e2.x);
+      if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
+        ++mesh.dropped_degenerate;
+        continue;
+      }
+      mesh.triangles.push_back(tri);
+      mesh.normal_idx.push_back(nrm);
+      all_normals = all_normals && has_n;
+    }
+  }
+  if (!all_normals) {
+    if (nn > 0) mesh.warnings.push_back(path + ": some faces lack normals; vertex normals ignored");
+    mesh.normals.clear();
+    mesh.normal_idx.clear();
+  }
+  if (mesh.dropped_degenerate > 0)
+    mesh.warnings.push_back(path + ": dropped " + std::to_string(mesh.dropped_degenerate) +
+                            " zero-area triangles");
+  if (mesh.triangles.empty()) fail(path, 0, "no triangles with non-zero area");
+  return mesh;
+}
+
+}  // namespace whisker
