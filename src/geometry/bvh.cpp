@@ -55,6 +55,14 @@ bool box_hit(const Box3& b, const Ray& ray, float tmax) {
   return tn <= std::min(tf * (1.0f + 4e-7f), tmax);
 }
 
+// Exactly zero area: the edge cross product is zero. Products of floats are
+// exact in double, so only exactly collinear vertices pass.
+bool zero_area(const Triangle& t) {
+  const glm::dvec3 a(t.v0), e1 = glm::dvec3(t.v1) - a, e2 = glm::dvec3(t.v2) - a;
+  return e1.y * e2.z - e1.z * e2.y == 0.0 && e1.z * e2.x - e1.x * e2.z == 0.0 &&
+         e1.x * e2.y - e1.y * e2.x == 0.0;
+}
+
 }  // namespace
 
 Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
@@ -62,6 +70,12 @@ Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
   Bvh b;
   b.kind_ = kind;
   b.tri_count_ = tris.size();
+  // The shear of the watertight test rounds, so three distinct collinear
+  // vertices can come out not quite collinear and be hit along their
+  // segment. Stored as a point instead, such a triangle can never be hit
+  // (all three edge functions are exactly zero), and keeps its index.
+  for (Triangle& t : tris)
+    if (zero_area(t)) t = Triangle{t.v0, t.v0, t.v0};
   switch (kind) {
     case AccelKind::Brute:
       b.tris_ = std::move(tris);

@@ -151,8 +151,9 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
   const std::size_t nv = attrib.vertices.size() / 3;
   mesh.positions.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    const vec3 p(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-    mesh.positions[i] = p * scale + translate;
+    // One rounding per coordinate, whatever the compiler fuses.
+    vec3& p = mesh.positions[i];
+    for (int k = 0; k < 3; ++k) p[k] = std::fma(attrib.vertices[3 * i + k], scale, translate[k]);
     if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
         !std::isfinite(mesh.positions[i].z))
       fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");

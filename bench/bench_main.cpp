@@ -1,0 +1,131 @@
+// whisker-bench rays FILE [--accel brute|bbox|midpoint|sah] [--threads T] [--json]
+//
+// Traces a ray file against the cat alone and prints rays, hits, the sum of
+// hit distances and Mrays/s on one thread and on all threads (median of
+// --reps runs), with Embree 3's rtcIntersect1 on the same rays in the same
+// run when it is built in. Also the build time and bytes per triangle.
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <string>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "geometry/bvh.h"
+#include "geometry/mesh.h"
+#include "ray_bench.h"
+#ifdef WHISKER_HAVE_EMBREE
+#include "embree_tracer.h"
+#endif
+
+namespace {
+
+using namespace whisker;
+
+const std::map<std::string, AccelKind> kAccel = {{"brute", AccelKind::Brute},
+                                                 {"bbox", AccelKind::BBox},
+                                                 {"midpoint", AccelKind::Midpoint},
+                                                 {"sah", AccelKind::Sah}};
+
+struct Options {
+  std::string file;
+  std::string mesh = WHISKER_SHARED_DIR "/assets/cat.obj";
+  std::string accel = "sah";
+  int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  int reps = 5;
+  std::size_t limit = 0;
+  bool json = false;
+  bool no_embree = false;
+};
+
+int run_rays(const Options& opt) {
+  std::vector<Ray> rays = bench::read_rays(opt.file);
+  if (opt.limit > 0 && opt.limit < rays.size()) rays.resize(opt.limit);
+  const std::vector<Triangle> tris = bench::load_cat(opt.mesh);
+  const Bvh bvh = Bvh::build(tris, kAccel.at(opt.accel));
+  auto trace = [&](const Ray& r, float& t) {
+    Hit h;
+    if (!bvh.intersect(r, h)) return false;
+    t = h.t;
+    return true;
+  };
+  const bench::Timing one = bench::time_trace(rays, 1, opt.reps, trace);
+  const bench::Timing all = bench::time_trace(rays, opt.threads, opt.reps, trace);
+
+  nlohmann::json j;
+  j["rays"] = rays.size();
+  j["hits"] = one.result.hits;
+  j["distance_sum"] = one.result.distance_sum;
+  j["mrays_per_s_1thread"] = one.mrays_per_s(rays.size());
+  j["mrays_per_s_all"] = all.mrays_per_s(rays.size());
+  j["threads"] = opt.threads;
+  j["accel"] = opt.accel;
+  j["triangles"] = bvh.triangle_count();
+  j["nodes"] = bvh.node_count();
+  j["build_ms"] = bvh.build_seconds() * 1e3;
+  j["bytes_per_triangle"] = double(bvh.bytes()) / double(std::max<std::size_t>(1, tris.size()));
+#ifdef WHISKER_HAVE_EMBREE
+  if (!opt.no_embree) {
+    double embree_build = 0.0;
+    bench::EmbreeScene* es = bench::embree_build(tris, embree_build);
+    const bench::Timing e = bench::time_trace(rays, 1, opt.reps, [&](const Ray& r, float& t) {
+      return bench::embree_intersect(es, r, t);
+    });
+    bench::embree_release(es);
+    j["embree_mrays_per_s_1thread"] = e.mrays_per_s(rays.size());
+    j["embree_hits"] = e.result.hits;
+    j["embree_distance_sum"] = e.result.distance_sum;
+    j["embree_build_ms"] = embree_build * 1e3;
+    j["ratio"] = j["mrays_per_s_1thread"].get<double>() / e.mrays_per_s(rays.size());
+  }
+#endif
+  if (opt.json) {
+    std::cout << j.dump() << "\n";
+    return 0;
+  }
+  std::printf("file          %s\n", opt.file.c_str());
+  std::printf("accel         %s: %zu triangles, %zu nodes, built in %.2f ms, %.1f bytes/triangle\n",
+              opt.accel.c_str(), bvh.triangle_count(), bvh.node_count(), bvh.build_seconds() * 1e3,
+              j["bytes_per_triangle"].get<double>());
+  std::printf("rays          %zu\n", rays.size());
+  std::printf("hits          %zu\n", one.result.hits);
+  std::printf("distance sum  %.6f\n", one.result.distance_sum);
+  std::printf("Mrays/s       %.3f on 1 thread, %.3f on %d threads (median of %d)\n",
+              one.mrays_per_s(rays.size()), all.mrays_per_s(rays.size()), opt.threads, opt.reps);
+  if (j.contains("embree_mrays_per_s_1thread")) {
+    std::printf("embree        %.3f Mrays/s on 1 thread, %zu hits, distance sum %.6f, built in %.2f ms\n",
+                j["embree_mrays_per_s_1thread"].get<double>(), j["embree_hits"].get<std::size_t>(),
+                j["embree_distance_sum"].get<double>(), j["embree_build_ms"].get<double>());
+    std::printf("ratio         %.3f (whisker / embree, 1 thread)\n", j["ratio"].get<double>());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Whisker benchmarks"};
+  app.require_subcommand(1);
+  Options opt;
+  CLI::App* rays = app.add_subcommand("rays", "trace a ray file against the cat");
+  rays->add_option("FILE", opt.file, "ray file (../shared/bench/rays/FORMAT.md)")->required();
+  rays->add_option("--accel", opt.accel, "brute|bbox|midpoint|sah")
+      ->check(CLI::IsMember({"brute", "bbox", "midpoint", "sah"}));
+  rays->add_option("--threads", opt.threads, "threads for the all-threads figure")
+      ->check(CLI::PositiveNumber);
+  rays->add_option("--mesh", opt.mesh, "OBJ mesh (scaled 0.6, moved by (0,-10,0))");
+  rays->add_option("--reps", opt.reps, "repetitions; the median is reported")
+      ->check(CLI::PositiveNumber);
+  rays->add_option("--limit", opt.limit, "trace only the first N rays (for brute force)");
+  rays->add_flag("--json", opt.json, "one JSON object on stdout");
+  rays->add_flag("--no-embree", opt.no_embree, "skip the Embree comparison");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run_rays(opt);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "whisker-bench: %s\n", e.what());
+    return 1;
+  }
+}
