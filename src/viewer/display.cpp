@@ -128,6 +128,8 @@ Display::~Display() {
   if (tex_) glDeleteTextures(1, &tex_);
   if (tex_sq_) glDeleteTextures(1, &tex_sq_);
   if (vao_) glDeleteVertexArrays(1, &vao_);
+  if (cache_) glDeleteTextures(1, &cache_);
+  if (fbo_) glDeleteFramebuffers(1, &fbo_);
   if (program_) glDeleteProgram(program_);
 }
 
@@ -158,14 +160,41 @@ void Display::upload(const Snapshot& s, bool with_sq) {
   }
   width_ = s.width;
   height_ = s.height;
+  cache_valid_ = false;
 }
 
 void Display::draw(const PixelRect& area, int framebuffer_height, float spp,
                    const DisplayParams& p) {
   if (!width_ || !height_ || area.w <= 0 || area.h <= 0) return;
-  // Magnified or 1:1 pixels stay crisp; a reduced image averages radiance.
-  const GLint filter = area.w < width_ ? GL_LINEAR : GL_NEAREST;
-  glViewport(area.x, framebuffer_height - area.y - area.h, area.w, area.h);
+  if (!cache_valid_ || spp != cache_spp_ || p.exposure != cache_params_.exposure ||
+      p.gamma != cache_params_.gamma || p.mode != cache_params_.mode)
+    map_to_cache(spp, p);
+  // Magnified or 1:1 pixels stay crisp; a reduced image is filtered.
+  const int y0 = framebuffer_height - area.y - area.h;
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glDisable(GL_SCISSOR_TEST);
+  glBlitFramebuffer(0, 0, cache_w_, cache_h_, area.x, y0, area.x + area.w, y0 + area.h,
+                    GL_COLOR_BUFFER_BIT, area.w < cache_w_ ? GL_LINEAR : GL_NEAREST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void Display::map_to_cache(float spp, const DisplayParams& p) {
+  if (!fbo_) glGenFramebuffers(1, &fbo_);
+  if (!cache_) glGenTextures(1, &cache_);
+  if (cache_w_ != width_ || cache_h_ != height_) {
+    glBindTexture(GL_TEXTURE_2D, cache_);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width_, height_, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 nullptr);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, cache_, 0);
+    cache_w_ = width_;
+    cache_h_ = height_;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, cache_w_, cache_h_);
   glDisable(GL_BLEND);
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_DEPTH_TEST);
@@ -173,10 +202,8 @@ void Display::draw(const PixelRect& area, int framebuffer_height, float spp,
   glUseProgram(program_);
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, tex_sq_);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, tex_);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
   glUniform1i(loc_sums_, 0);
   glUniform1i(loc_sq_, 1);
   glUniform1f(loc_spp_, spp);
@@ -188,6 +215,10 @@ void Display::draw(const PixelRect& area, int framebuffer_height, float spp,
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
   glUseProgram(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  cache_valid_ = true;
+  cache_spp_ = spp;
+  cache_params_ = p;
 }
 
 PixelRect fit_image(const PixelRect& area, int image_w, int image_h) {

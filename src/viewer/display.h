@@ -33,6 +33,9 @@ class Display {
   // Uploads the snapshot's sums (and sums of squares if `with_sq`); call only
   // when the snapshot changed.
   void upload(const Snapshot& s, bool with_sq);
+  // Draws the image into `area` of the default framebuffer. The mapped image
+  // is cached in an 8-bit texture and re-mapped only when the sums or the
+  // display parameters change: a plain copy is all most frames pay.
   void draw(const PixelRect& area, int framebuffer_height, float spp,
             const DisplayParams& p);
 
@@ -41,9 +44,16 @@ class Display {
   bool has_sq() const { return sq_valid_; }
 
  private:
+  void map_to_cache(float spp, const DisplayParams& p);
+
   unsigned program_ = 0, vao_ = 0, tex_ = 0, tex_sq_ = 0;
+  unsigned fbo_ = 0, cache_ = 0;  // the mapped image, RGBA8, image size
   int width_ = 0, height_ = 0;
+  int cache_w_ = 0, cache_h_ = 0;
   bool sq_valid_ = false;
+  bool cache_valid_ = false;
+  float cache_spp_ = -1.0f;
+  DisplayParams cache_params_;
   int loc_spp_ = -1, loc_exposure_ = -1, loc_gamma_ = -1, loc_mode_ = -1,
       loc_lum_ = -1, loc_sums_ = -1, loc_sq_ = -1;
 };
