@@ -98,7 +98,8 @@ int run_headless(const HeadlessOptions& o) {
         {"relative_standard_error", snap.relative_standard_error()},
         {"settings",
          {{"spp_per_pass", s.spp}, {"max_depth", s.max_depth}, {"indirect", s.indirect},
-          {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)}}}};
+          {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)},
+          {"sampler", to_string(s.sampler)}, {"zero_cutoff", s.zero_cutoff}}}};
     write_text_atomically(o.stats_json, j.dump(2) + "\n");
   }
   return 0;

@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
   std::optional<int> spp, depth, target_spp;
   int threads = 0;
   std::optional<std::uint64_t> seed;
-  std::string indirect, fresnel, aa, light, accel;
+  std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff;
   std::optional<float> intensity;
   std::string out_png, out_float, stats_json, screenshot;
   int edit_after = -1;
@@ -86,6 +86,10 @@ int main(int argc, char** argv) {
   app.add_option("--aa", aa, "Anti-aliasing (Gaussian jitter)")->check(CLI::IsMember({"on", "off"}));
   app.add_option("--accel", accel, "Triangle acceleration")
       ->check(CLI::IsMember({"brute", "bbox", "midpoint", "sah"}));
+  app.add_option("--sampler", sampler, "Random numbers: independent (the report's) or sobol")
+      ->check(CLI::IsMember({"independent", "sobol"}));
+  app.add_option("--zero-cutoff", zero_cutoff, "End paths whose throughput is zero")
+      ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--light", light, "Light position x,y,z");
   app.add_option("--intensity", intensity, "Light intensity")->check(CLI::Range(0.0, 1e30));
   app.add_option("--out", out_png, "PNG output (the report's display mapping)");
@@ -125,6 +129,9 @@ int main(int argc, char** argv) {
   if (!indirect.empty()) s.indirect = indirect == "on";
   if (!fresnel.empty()) s.fresnel = fresnel == "on";
   if (!aa.empty()) s.aa = aa == "on";
+  if (!sampler.empty())
+    s.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
+  if (!zero_cutoff.empty()) s.zero_cutoff = zero_cutoff == "on";
   if (accel == "brute") s.accel = AccelKind::Brute;
   if (accel == "bbox") s.accel = AccelKind::BBox;
   if (accel == "midpoint") s.accel = AccelKind::Midpoint;

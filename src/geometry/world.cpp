@@ -23,6 +23,7 @@ World::World(const Scene& scene, const World* reuse) {
       sphere_material_.push_back(s.material);
     }
   }
+  sphere_set_ = SphereSet(spheres_);
   std::vector<const TriangleMesh*> sources;
   for (const auto& m : scene.meshes) {
     mesh_material_.push_back(m.material);
@@ -68,15 +69,9 @@ World::World(const Scene& scene, const World* reuse) {
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {
   Hit hit;
   hit.t = ray.tmax;
-  for (std::uint32_t i = 0; i < spheres_.size(); ++i) {
-    const float t = intersect_sphere(spheres_[i], Ray{ray.o, ray.d, ray.tmin, hit.t});
-    if (t < hit.t) {
-      hit.t = t;
-      hit.kind = PrimKind::Sphere;
-      hit.prim = i;
-    }
-  }
+  // The mesh first: a cat hit shortens the sphere test's interval.
   if (mesh_) mesh_->bvh.intersect(ray, hit);
+  if (sphere_set_.intersect(ray, hit.t, hit.t, hit.prim)) hit.kind = PrimKind::Sphere;
   if (!hit.valid()) return false;
   out.t = hit.t;
   if (hit.kind == PrimKind::Sphere) {
@@ -105,9 +100,7 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
 }
 
 bool World::occluded(const Ray& ray) const {
-  for (const auto& s : spheres_)
-    if (intersect_sphere(s, ray) < kInf) return true;
-  return mesh_ && mesh_->bvh.occluded(ray);
+  return sphere_set_.occluded(ray) || (mesh_ && mesh_->bvh.occluded(ray));
 }
 
 }  // namespace whisker

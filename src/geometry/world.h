@@ -10,6 +10,7 @@
 #include "geometry/bvh.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
+#include "geometry/sphere_set.h"
 #include "scene/scene.h"
 
 namespace whisker {
@@ -47,6 +48,7 @@ class World {
     AccelKind accel = AccelKind::Sah;
   };
   std::vector<Sphere> spheres_;
+  SphereSet sphere_set_;  // the same spheres, for 8-wide tests
   std::vector<Material> sphere_material_;
   std::vector<Material> mesh_material_;
   std::vector<bool> mesh_vertex_normals_;

@@ -52,7 +52,7 @@ vec3 cosine_direction(const vec3& n, float u1, float u2) {
 }
 
 vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
-              Ray ray, Rng& rng, PathStats& stats) {
+              Ray ray, Sampler& sampler, PathStats& stats) {
   vec3 L(0.0f), beta(1.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
   for (int depth = 0; depth <= settings.max_depth; ++depth) {
@@ -79,8 +79,11 @@ vec3 radiance(const World& world, const PointLight& light, const RenderSettings&
         if (!settings.indirect) return L;
         // Indirect, report section 3: cosine sampling makes the estimator rho * L_in.
         beta *= m.albedo;
-        if (beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
-        const float u1 = rng.uniform(), u2 = rng.uniform();
+        // A path that can carry no more light ends here (the walls' albedos
+        // are pure primaries); it changes the time, not the estimate.
+        if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
+        float u1, u2;
+        sampler.get2d(u1, u2);
         ray = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
         break;
       }
@@ -100,7 +103,7 @@ vec3 radiance(const World& world, const PointLight& light, const RenderSettings&
         vec3 t;
         bool reflected = !refract(ray.d, n, n1 / n2, t);  // total internal reflection
         if (!reflected && settings.fresnel)
-          reflected = rng.uniform() < schlick(glm::dot(ray.d, n), n1, n2);
+          reflected = sampler.get1d() < schlick(glm::dot(ray.d, n), n1, n2);
         ray = spawn_ray(h.p, h.ng, reflected ? reflect(ray.d, n) : t);
         break;
       }
@@ -110,17 +113,18 @@ vec3 radiance(const World& world, const PointLight& light, const RenderSettings&
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
-                  Rng& rng, PathStats& stats) {
+                  Sampler& sampler, PathStats& stats) {
   float dx = 0.0f, dy = 0.0f;
   if (scene.settings.aa) {
     // Box-Muller (report section 3): two independent N(0, 0.5^2) offsets in pixels.
-    const float u1 = 1.0f - rng.uniform();  // (0, 1]: log stays finite
-    const float u2 = rng.uniform();
+    float u1, u2;
+    sampler.get2d(u1, u2);
+    u1 = 1.0f - u1;  // (0, 1]: log stays finite
     const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
     dx = r * std::cos(2.0f * kPi * u2);
     dy = r * std::sin(2.0f * kPi * u2);
   }
-  return radiance(world, scene.light, scene.settings, cam.ray(i, j, dx, dy), rng, stats);
+  return radiance(world, scene.light, scene.settings, cam.ray(i, j, dx, dy), sampler, stats);
 }
 
 }  // namespace whisker

@@ -19,12 +19,12 @@ struct PathStats {
 // Radiance arriving along `ray` (light intensity applied), with at most
 // settings.max_depth hits after the first.
 vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
-              Ray ray, Rng& rng, PathStats& stats);
+              Ray ray, Sampler& sampler, PathStats& stats);
 
 // One sample of pixel (i, j): camera ray (with Gaussian jitter when AA is on)
 // and its radiance.
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i,
-                  int j, Rng& rng, PathStats& stats);
+                  int j, Sampler& sampler, PathStats& stats);
 
 // Directions, exposed for tests.
 vec3 reflect(const vec3& d, const vec3& n);

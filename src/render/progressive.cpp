@@ -236,8 +236,8 @@ void ProgressiveRenderer::run_tiles() {
         glm::dvec3 sum(0.0);
         double sum_sq = 0.0;
         for (int k = 0; k < job.pass_spp; ++k) {
-          Rng rng(pixel, job.sample_base + std::uint64_t(k), seed);
-          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, rng, stats);
+          Sampler sampler(scene.settings.sampler, pixel, job.sample_base + std::uint64_t(k), seed);
+          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
           if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
             ++nans;  // dropped and counted, never accumulated
             continue;

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 
+#include "scene/scene.h"
+
 namespace whisker {
 
 // SplitMix64 output function (Steele, Lea, Flood, "Fast splittable
@@ -14,8 +16,8 @@ inline std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-// One sample's stream: a SplitMix64 sequence whose start is a hash of the
-// pixel, the sample index and the seed.
+// One sample's stream of independent uniforms: a SplitMix64 sequence whose
+// start is a hash of the pixel, the sample index and the seed.
 class Rng {
  public:
   Rng(std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
@@ -30,6 +32,47 @@ class Rng {
 
  private:
   std::uint64_t state_;
+};
+
+// The 2D Sobol (0,2)-sequence, Owen-scrambled per pixel and dimension pair,
+// with the sample order shuffled per pair so that pairs are decorrelated
+// (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020, sections 3-5).
+// Each 2D request takes the next dimension pair; a 1D request takes a pair's
+// first coordinate.
+std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
+std::uint32_t sobol_dim1(std::uint32_t index);
+
+// What the estimator draws its numbers from: independent uniforms (the
+// report's method) or the scrambled Sobol points.
+class Sampler {
+ public:
+  Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
+      : kind_(kind), rng_(pixel, sample, seed), index_(std::uint32_t(sample)),
+        key_(std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel))) {}
+
+  float get1d() {
+    if (kind_ == SamplerKind::Independent) return rng_.uniform();
+    float u, v;
+    sobol2d(u, v);
+    return u;
+  }
+  void get2d(float& u, float& v) {
+    if (kind_ == SamplerKind::Independent) {
+      u = rng_.uniform();
+      v = rng_.uniform();
+      return;
+    }
+    sobol2d(u, v);
+  }
+
+ private:
+  void sobol2d(float& u, float& v);
+
+  SamplerKind kind_;
+  Rng rng_;
+  std::uint32_t index_;
+  std::uint32_t key_;
+  std::uint32_t dim_ = 0;  // dimension pair counter
 };
 
 }  // namespace whisker

@@ -22,4 +22,8 @@ const char* to_string(AccelKind k) {
   return "?";
 }
 
+const char* to_string(SamplerKind k) {
+  return k == SamplerKind::Independent ? "independent" : "sobol";
+}
+
 }  // namespace whisker

@@ -58,6 +58,10 @@ struct Camera {
   int height = 512;
 };
 
+// Where the estimator's random numbers come from: independent uniforms (the
+// report's method) or Owen-scrambled Sobol points.
+enum class SamplerKind : std::uint8_t { Independent, Sobol };
+
 // Acceleration structure for the triangles (issue 4).
 enum class AccelKind : std::uint8_t { Brute, BBox, Midpoint, Sah };
 
@@ -70,6 +74,8 @@ struct RenderSettings {
   std::uint64_t seed = 0;
   int target_spp = 0;     // stop accumulating here (0 = never)
   AccelKind accel = AccelKind::Sah;
+  SamplerKind sampler = SamplerKind::Sobol;
+  bool zero_cutoff = true;  // end paths whose throughput is exactly zero
 };
 
 struct Scene {
@@ -84,5 +90,6 @@ struct Scene {
 
 const char* to_string(MaterialKind k);
 const char* to_string(AccelKind k);
+const char* to_string(SamplerKind k);
 
 }  // namespace whisker

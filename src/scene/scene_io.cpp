@@ -271,7 +271,8 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   }
   if (top.has("settings")) {
     Fields s = top.object("settings");
-    s.only({"spp", "max_depth", "indirect", "fresnel", "aa", "seed", "target_spp", "accel"});
+    s.only({"spp", "max_depth", "indirect", "fresnel", "aa", "seed", "target_spp", "accel",
+            "sampler", "zero_cutoff"});
     RenderSettings& r = scene.settings;
     r.spp = int(s.integer("spp", 1, 1 << 20, r.spp));
     r.max_depth = int(s.integer("max_depth", 0, 1000, r.max_depth));
@@ -281,6 +282,13 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     r.seed = std::uint64_t(s.integer("seed", 0, (1LL << 53), (long long)r.seed));
     r.target_spp = int(s.integer("target_spp", 0, 1 << 30, r.target_spp));
     if (s.has("accel")) r.accel = parse_accel(s.string("accel"), s, "accel");
+    if (s.has("sampler")) {
+      const std::string k = s.string("sampler");
+      if (k != "independent" && k != "sobol")
+        s.fail(s.field("sampler"), "unknown sampler \"" + k + "\" (expected independent or sobol)");
+      r.sampler = k == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
+    }
+    r.zero_cutoff = s.boolean("zero_cutoff", r.zero_cutoff);
   }
   if (top.has("spheres")) {
     const json& arr = top.at("spheres");
@@ -379,7 +387,8 @@ std::string scene_to_json(const Scene& s) {
   const RenderSettings& r = s.settings;
   j["settings"] = {{"spp", r.spp},         {"max_depth", r.max_depth}, {"indirect", r.indirect},
                    {"fresnel", r.fresnel}, {"aa", r.aa},               {"seed", r.seed},
-                   {"target_spp", r.target_spp}, {"accel", to_string(r.accel)}};
+                   {"target_spp", r.target_spp}, {"accel", to_string(r.accel)},
+                   {"sampler", to_string(r.sampler)}, {"zero_cutoff", r.zero_cutoff}};
   j["spheres"] = json::array();
   for (const auto& sp : s.spheres) {
     json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", sp.radius},

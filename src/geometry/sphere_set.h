@@ -1,0 +1,30 @@
+// All spheres of a scene tested eight at a time (AVX): the report's room is
+// six huge spheres that nearly every ray meets, so this loop is hot.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/ray.h"
+#include "geometry/sphere.h"
+
+namespace whisker {
+
+class SphereSet {
+ public:
+  SphereSet() = default;
+  explicit SphereSet(const std::vector<Sphere>& spheres);
+
+  // Closest hit with t in (ray.tmin, tmax): writes t and the sphere index,
+  // returns false if none. Same arithmetic as intersect_sphere().
+  bool intersect(const Ray& ray, float tmax, float& t, std::uint32_t& index) const;
+  bool occluded(const Ray& ray) const;
+  std::size_t size() const { return count_; }
+
+ private:
+  std::size_t count_ = 0;
+  // Structure of arrays, padded to a multiple of 8 with spheres nothing hits.
+  std::vector<float> cx_, cy_, cz_, r2_;
+};
+
+}  // namespace whisker

@@ -1,0 +1,95 @@
+// The samplers: independent uniforms and Owen-scrambled Sobol points.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <vector>
+
+#include "render/sampler.h"
+
+using namespace whisker;
+
+TEST(Sampler, SobolDimensionOneIsTheKnownSequence) {
+  // Unscrambled Sobol dim 1 for indices 0..7: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
+  const double expect[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
+  for (std::uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dim1(i) * 0x1p-32, expect[i]) << i;
+}
+
+TEST(Sampler, OwenScrambleIsAPermutationOfLeadingBits) {
+  // Nested uniform scrambling maps the 2^k intervals of size 2^-k onto each other.
+  const std::uint32_t seed = 12345;
+  std::set<std::uint32_t> top;
+  for (std::uint32_t v = 0; v < 256; ++v) top.insert(owen_scramble(v << 24, seed) >> 24);
+  EXPECT_EQ(top.size(), 256u);
+}
+
+// Every power-of-two prefix of a pixel's points, in every dimension pair, is
+// a (0, m, 2)-net: one point in each of the 2^m elementary boxes of every shape.
+TEST(Sampler, SobolPrefixesAreStratifiedInEveryPair) {
+  const int m = 8, n = 1 << m;
+  for (std::uint32_t pixel : {0u, 77u, 262143u}) {
+    std::vector<std::vector<std::pair<float, float>>> pairs(4);
+    for (int i = 0; i < n; ++i) {
+      Sampler s(SamplerKind::Sobol, pixel, std::uint64_t(i), 9);
+      for (auto& p : pairs) {
+        float u, v;
+        s.get2d(u, v);
+        p.emplace_back(u, v);
+      }
+    }
+    for (const auto& pts : pairs) {
+      for (int kx = 0; kx <= m; ++kx) {
+        const int nx = 1 << kx, ny = n / nx;
+        std::vector<int> count(n, 0);
+        for (const auto& [u, v] : pts) ++count[int(u * nx) * ny + int(v * ny)];
+        for (int c : count) ASSERT_EQ(c, 1) << "pixel " << pixel << " box " << nx << "x" << ny;
+      }
+    }
+  }
+}
+
+TEST(Sampler, PairsAreDecorrelated) {
+  // Without the per-pair shuffle, pair 0 and pair 1 would be the same points
+  // up to scrambling; their first coordinates would be strongly dependent.
+  // Check the correlation of u(pair 0) and u(pair 1) over 4096 samples.
+  const int n = 4096;
+  double su = 0, sv = 0, suv = 0, suu = 0, svv = 0;
+  for (int i = 0; i < n; ++i) {
+    Sampler s(SamplerKind::Sobol, 5, std::uint64_t(i), 1);
+    float u0, v0, u1, v1;
+    s.get2d(u0, v0);
+    s.get2d(u1, v1);
+    su += u0; sv += u1; suv += double(u0) * u1; suu += double(u0) * u0; svv += double(u1) * u1;
+  }
+  const double cov = suv / n - su / n * sv / n;
+  const double corr = cov / std::sqrt((suu / n - su * su / n / n) * (svv / n - sv * sv / n / n));
+  EXPECT_LT(std::fabs(corr), 0.05);
+}
+
+TEST(Sampler, IndependentUniformsHaveTheRightMoments) {
+  double s1 = 0, s2 = 0;
+  const int n = 1 << 18;
+  for (int i = 0; i < n; ++i) {
+    Sampler s(SamplerKind::Independent, std::uint32_t(i % 512), std::uint64_t(i / 512), 3);
+    const float u = s.get1d();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    s1 += u;
+    s2 += double(u) * u;
+  }
+  EXPECT_NEAR(s1 / n, 0.5, 5 * std::sqrt(1.0 / 12 / n));
+  EXPECT_NEAR(s2 / n, 1.0 / 3, 5 * std::sqrt(4.0 / 45 / n));
+}
+
+TEST(Sampler, SameInputsSameNumbers) {
+  for (auto kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    Sampler a(kind, 10, 20, 30), b(kind, 10, 20, 30), c(kind, 10, 21, 30);
+    float a1, a2, b1, b2, c1, c2;
+    a.get2d(a1, a2);
+    b.get2d(b1, b2);
+    c.get2d(c1, c2);
+    EXPECT_EQ(a1, b1);
+    EXPECT_EQ(a2, b2);
+    EXPECT_NE(a1, c1);
+  }
+}
