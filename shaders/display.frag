@@ -28,7 +28,7 @@ void main() {
     // 100% red. Black where the pixel has no light to measure against.
     float m = dot(mean, lum_weights);
     float var = max(texture(sums_sq, uv).r / max(spp, 1.0) - m * m, 0.0);
-    float rel = sqrt(var / max(spp, 1.0)) / m;
+    float rel = sqrt(var / max(spp - 1.0, 1.0)) / m;  // sample variance / n
     colour = vec4(m > 0.0 ? heat((log(rel) / log(10.0) + 3.0) / 3.0) : vec3(0.0), 1.0);
     return;
   }

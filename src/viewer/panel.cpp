@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <thread>
@@ -30,25 +31,34 @@ static void stats(ViewerState& s, double now) {
   const bool stale = sn.generation != s.generation;
   const char* status = s.paused ? "paused" : sn.done ? "done (target reached)" : "rendering";
   ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, status);
-  ImGui::Text("samples/pixel  %llu%s", (unsigned long long)sn.spp,
-              stale ? "  (previous edit)" : "");
   const double secs = sn.seconds > 0.0 ? sn.seconds : 0.0;
-  ImGui::Text("passes  %llu   %.2f /s", (unsigned long long)sn.passes,
-              secs > 0.0 ? sn.passes / secs : 0.0);
-  ImGui::Text("rays/s  %s   render time %.1f s",
-              human(secs > 0.0 ? sn.rays / secs : 0.0).c_str(), secs);
-  ImGui::Text("since last change  %.1f s", now - s.last_change);
+  ImGui::Text("%llu spp   %llu passes   %.2f passes/s%s", (unsigned long long)sn.spp,
+              (unsigned long long)sn.passes, secs > 0.0 ? sn.passes / secs : 0.0,
+              stale ? "  (before the edit)" : "");
+  ImGui::Text("%s rays/s   render %.1f s   since change %.1f s",
+              human(secs > 0.0 ? sn.rays / secs : 0.0).c_str(), secs, now - s.last_change);
   if (std::isfinite(s.rse))
     ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
   else
     ImGui::Text("rel. std. error  n/a (needs 2 spp)");
+  ImGui::SameLine();
   if (sn.nan_count)
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "NaN/Inf samples dropped  %llu",
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "  NaN/Inf dropped %llu",
                        (unsigned long long)sn.nan_count);
   else
-    ImGui::Text("NaN/Inf samples dropped  0");
-  ImGui::Text("triangles  %zu", s.triangles);
-  ImGui::Text("UI frame  %.1f ms", s.frame_ms_avg);
+    ImGui::Text("  NaN/Inf dropped 0");
+  if (s.nodes)
+    ImGui::Text("triangles %zu   BVH nodes %zu   UI frame %.1f ms", s.triangles, s.nodes,
+                s.frame_ms_avg);
+  else
+    ImGui::Text("triangles %zu   UI frame %.1f ms", s.triangles, s.frame_ms_avg);
+  // The error against render time, log scale, this generation only.
+  if (s.rse_history.size() >= 2) {
+    char overlay[48];
+    std::snprintf(overlay, sizeof overlay, "log10 rel. error, per pass");
+    ImGui::PlotLines("##rse", s.rse_history.data(), int(s.rse_history.size()), 0, overlay,
+                     FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 40.0f * ImGui::GetIO().FontGlobalScale));
+  }
 }
 
 static bool material_editor(Material& m, float* radius, float* inner_radius) {

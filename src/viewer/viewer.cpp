@@ -237,7 +237,9 @@ int run_viewer(const ViewerOptions& opt) {
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
 
-  // The content scale (high-DPI) sizes the panel; the image keeps 1:1 pixels.
+  // Sizes are asked for in logical units: GLFW_SCALE_TO_MONITOR multiplies
+  // them by the content scale on X11 and Windows, macOS doubles the
+  // framebuffer instead. Either way the image gets its pixels 1:1.
   float cscale = 1.0f;
   int max_w = 1 << 14, max_h = 1 << 14;
   if (GLFWmonitor* mon = glfwGetPrimaryMonitor()) {
@@ -249,12 +251,11 @@ int run_viewer(const ViewerOptions& opt) {
     }
   }
   cscale = std::clamp(cscale, 1.0f, 4.0f);
-  const float panel_w = kPanelWidth * cscale;
   const Camera& cam0 = opt.scene.camera;
-  int win_w = opt.width > 0 ? opt.width : int(cam0.width / cscale + panel_w);
-  int win_h = opt.height > 0 ? opt.height : std::max(int(cam0.height / cscale), int(720 * cscale));
-  win_w = std::min(win_w, max_w);
-  win_h = std::min(win_h, max_h);
+  int win_w = opt.width > 0 ? opt.width : int(cam0.width / cscale + kPanelWidth);
+  int win_h = opt.height > 0 ? opt.height : std::max(int(cam0.height / cscale), 800);
+  win_w = std::min(win_w, int(max_w / cscale));
+  win_h = std::min(win_h, int(max_h / cscale));
 
   GLFWwindow* window = glfwCreateWindow(win_w, win_h, "Whisker", nullptr, nullptr);
   if (!window) {
@@ -291,8 +292,21 @@ int run_viewer(const ViewerOptions& opt) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr;  // the panel is fixed; nothing to remember
     ImGui::StyleColorsDark();
-    ImGui::GetStyle().ScaleAllSizes(cscale);
-    io.FontGlobalScale = cscale;
+    // The panel scales by whatever the framebuffer does not already: the
+    // content scale on X11/Windows, nothing more on macOS.
+    float ui_scale = 1.0f;
+    {
+      float sx = 1.0f, sy = 1.0f;
+      glfwGetWindowContentScale(window, &sx, &sy);
+      int fw = 0, fh = 0, ww = 0, wh = 0;
+      glfwGetFramebufferSize(window, &fw, &fh);
+      glfwGetWindowSize(window, &ww, &wh);
+      const float fb_ratio = ww > 0 && fw > 0 ? float(fw) / ww : 1.0f;
+      ui_scale = std::clamp(sx / fb_ratio, 1.0f, 4.0f);
+    }
+    const float panel_w = kPanelWidth * ui_scale;
+    ImGui::GetStyle().ScaleAllSizes(ui_scale);
+    io.FontGlobalScale = ui_scale;
     install_redraw_callbacks(window);
     g_redraw = 3;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
@@ -332,6 +346,7 @@ int run_viewer(const ViewerOptions& opt) {
     std::uint64_t title_spp = ~0ull;
 
     double last_frame = -1.0;
+    std::uint64_t rse_generation = 0;
     int drawn = 0;
     constexpr int kWarmupFrames = 5;
     while (!glfwWindowShouldClose(window)) {
@@ -349,6 +364,11 @@ int run_viewer(const ViewerOptions& opt) {
       if (fresh) {
         display.upload(s.snap, s.display.mode == 1);
         s.rse = s.snap.relative_standard_error();
+        if (s.snap.generation != rse_generation) {
+          s.rse_history.clear();
+          rse_generation = s.snap.generation;
+        }
+        if (std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
       }
       // Draw only when the screen can change: a new pass, input (and a few
       // frames after it for ImGui to settle), or the panel's clock.
@@ -453,9 +473,11 @@ int run_viewer(const ViewerOptions& opt) {
         fstats.work_ms.push_back(float((t_work - t0) * 1e3));
         fstats.total_ms.push_back(float((t1 - t0) * 1e3));
       }
-      // The panel shows a running mean over the last ~second of frames.
-      const float ms = float((t1 - t0) * 1e3);
-      s.frame_ms_avg = s.frame_ms_avg == 0.0f ? ms : 0.95f * s.frame_ms_avg + 0.05f * ms;
+      // The panel shows the mean of the last 30 timed frames.
+      if (!fstats.total_ms.empty()) {
+        const std::size_t n = std::min<std::size_t>(30, fstats.total_ms.size());
+        s.frame_ms_avg = std::accumulate(fstats.total_ms.end() - n, fstats.total_ms.end(), 0.0f) / n;
+      }
       if (finish) break;
     }
 

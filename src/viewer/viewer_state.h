@@ -42,6 +42,9 @@ struct ViewerState {
   Snapshot snap;
   double rse = 0.0;  // relative standard error of snap
   std::size_t triangles = 0;
+  std::size_t nodes = 0;  // 0: not known
+  // log10 of the relative standard error, one entry per pass of this generation.
+  std::vector<float> rse_history;
 
   float exposure_stops = 0.0f;  // relative to the report's mapping
   DisplayParams display;
