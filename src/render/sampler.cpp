@@ -54,14 +54,17 @@ std::uint32_t sobol_dim1(std::uint32_t index) {
 
 void Sampler::sobol2d(float& u, float& v) {
   const std::uint32_t pair_key = hash32(key_, dim_++);
-  // Shuffle the order of the points (Burley section 4), then scramble each
-  // coordinate with its own seed.
-  const std::uint32_t i = owen_scramble(index_, pair_key);
-  const std::uint32_t x = owen_scramble(reverse_bits(i), hash32(pair_key, 1));
+  // Shuffle the order of the points (Burley section 4): i = owen(index)...
+  const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, pair_key));
+  // ...then scramble each coordinate with its own seed. Dimension 0 is the
+  // bit-reversed index, so owen(reverse(i)) = reverse(lk(i)).
+  const std::uint32_t x = reverse_bits(laine_karras(i, hash32(pair_key, 1)));
   const std::uint32_t y = owen_scramble(sobol_dim1(i), hash32(pair_key, 2));
   // Top 24 bits: in [0, 1), never 1.
   u = float(x >> 8) * 0x1p-24f;
   v = float(y >> 8) * 0x1p-24f;
 }
+
+std::uint32_t Sampler::reverse(std::uint32_t x) { return reverse_bits(x); }
 
 }  // namespace whisker

@@ -47,7 +47,7 @@ std::uint32_t sobol_dim1(std::uint32_t index);
 class Sampler {
  public:
   Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
-      : kind_(kind), rng_(pixel, sample, seed), index_(std::uint32_t(sample)),
+      : kind_(kind), rng_(pixel, sample, seed), reversed_index_(reverse(std::uint32_t(sample))),
         key_(std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel))) {}
 
   float get1d() {
@@ -67,10 +67,11 @@ class Sampler {
 
  private:
   void sobol2d(float& u, float& v);
+  static std::uint32_t reverse(std::uint32_t x);
 
   SamplerKind kind_;
   Rng rng_;
-  std::uint32_t index_;
+  std::uint32_t reversed_index_;  // the sample index, bits reversed (Sobol dimension 0)
   std::uint32_t key_;
   std::uint32_t dim_ = 0;  // dimension pair counter
 };
