@@ -36,9 +36,10 @@ int run(const std::string& cmd) {
 
 bool have_xvfb() { return run("command -v xvfb-run >/dev/null 2>&1") == 0; }
 
-// The viewer in a 1280x800 virtual screen with Mesa's software renderer.
-int run_viewer(const std::string& args, const std::string& log) {
-  return run("xvfb-run -a -s '-screen 0 1280x800x24' env LIBGL_ALWAYS_SOFTWARE=1 '" +
+// The viewer in a virtual screen with Mesa's software renderer.
+int run_viewer(const std::string& args, const std::string& log,
+               const std::string& screen = "1280x800x24") {
+  return run("xvfb-run -a -s '-screen 0 " + screen + "' env LIBGL_ALWAYS_SOFTWARE=1 '" +
              std::string(WHISKER_BIN) + "' " + args + " >'" + log + "' 2>&1");
 }
 
@@ -232,6 +233,46 @@ TEST_F(ViewerWindow, ScriptedLightMoveRestartsCleanly) {
 // The default scene (the cat, indirect + AA) after two passes.
 TEST_F(ViewerWindow, CatMatchesHeadless) {
   expect_window_matches_headless("cat", "--frames 2", "--scene cat --frames 2");
+}
+
+// On a screen too small for the image beside the panel, the window fits the
+// screen and the image is scaled down, keeping its aspect, beside the panel.
+TEST_F(ViewerWindow, SmallScreenScalesImageDown) {
+  fs::create_directories(kOut);
+  const fs::path shot = kOut / "small-window.png", ref = kOut / "small-headless.png";
+  ASSERT_EQ(run_viewer("--scene three-balls --frames 1 --screenshot '" + shot.string() + "'",
+                       (kOut / "small-window.log").string(), "800x600x24"),
+            0)
+      << slurp(kOut / "small-window.log");
+  ASSERT_EQ(run_headless("--scene three-balls --frames 1 --out '" + ref.string() + "'",
+                         (kOut / "small-headless.log").string()),
+            0);
+  const nlohmann::json summary = nlohmann::json::parse(slurp(shot.string() + ".json"));
+  const Rgb8 window = load_png(shot), headless = load_png(ref);
+  ASSERT_EQ(window.w, summary["framebuffer"][0].get<int>());
+  EXPECT_LE(window.w, 800);
+  EXPECT_LE(window.h, 600);
+  const Rect r = render_rect(summary);
+  EXPECT_LT(r.w, 512);
+  EXPECT_EQ(r.w, r.h);
+  EXPECT_GE(r.x, 0);
+  EXPECT_LE(r.x + r.w, window.w - 300) << "image under the panel";
+
+  // Scaled, so compare region averages: each quarter of the image.
+  for (int q = 0; q < 4; ++q) {
+    const int qx = q % 2, qy = q / 2;
+    double a[3] = {}, b[3] = {};
+    for (int y = 0; y < r.h / 2; ++y)
+      for (int x = 0; x < r.w / 2; ++x)
+        for (int c = 0; c < 3; ++c)
+          a[c] += window.at(r.x + qx * r.w / 2 + x, r.y + qy * r.h / 2 + y)[c];
+    for (int y = 0; y < 256; ++y)
+      for (int x = 0; x < 256; ++x)
+        for (int c = 0; c < 3; ++c) b[c] += headless.at(qx * 256 + x, qy * 256 + y)[c];
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(a[c] / (r.w / 2 * (r.h / 2)), b[c] / (256 * 256), 3.0)
+          << "quarter " << q << " channel " << c;
+  }
 }
 
 // Without a display the viewer says so, points at --headless and exits 3.

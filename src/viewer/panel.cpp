@@ -41,17 +41,18 @@ static void stats(ViewerState& s, double now) {
     ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
   else
     ImGui::Text("rel. std. error  n/a (needs 2 spp)");
-  ImGui::SameLine();
   if (sn.nan_count)
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "  NaN/Inf dropped %llu",
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "NaN/Inf dropped %llu",
                        (unsigned long long)sn.nan_count);
   else
-    ImGui::Text("  NaN/Inf dropped 0");
+    ImGui::Text("NaN/Inf dropped 0");
+  ImGui::SameLine();
   if (s.nodes)
-    ImGui::Text("triangles %zu   BVH nodes %zu   UI frame %.1f ms", s.triangles, s.nodes,
-                s.frame_ms_avg);
+    ImGui::Text("  triangles %zu  BVH nodes %zu", s.triangles, s.nodes);
   else
-    ImGui::Text("triangles %zu   UI frame %.1f ms", s.triangles, s.frame_ms_avg);
+    ImGui::Text("  triangles %zu", s.triangles);
+  if (s.frame_ms_avg > 0.0f)
+    ImGui::Text("UI frame %.1f ms (mean of the last 30 drawn)", s.frame_ms_avg);
   // The error against render time, log scale, this generation only.
   if (s.rse_history.size() >= 2) {
     char overlay[48];
