@@ -13,6 +13,14 @@ TEST(Sampler, SobolDimensionOneIsTheKnownSequence) {
   // Unscrambled Sobol dim 1 for indices 0..7: 0, 1/2, 3/4, 1/4, 5/8, 1/8, 3/8, 7/8.
   const double expect[] = {0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875};
   for (std::uint32_t i = 0; i < 8; ++i) EXPECT_EQ(sobol_dim1(i) * 0x1p-32, expect[i]) << i;
+  // All 32 index bits, against the definition: XOR of the generator columns
+  // v_1 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1) for the bits set.
+  for (std::uint32_t i : {0x80000000u, 0xdeadbeefu, 0x12345678u, 0xffffffffu, 0x00010001u}) {
+    std::uint32_t v = 0x80000000u, r = 0;
+    for (int k = 0; k < 32; ++k, v ^= v >> 1)
+      if (i >> k & 1) r ^= v;
+    EXPECT_EQ(sobol_dim1(i), r) << std::hex << i;
+  }
 }
 
 TEST(Sampler, OwenScrambleIsAPermutationOfLeadingBits) {

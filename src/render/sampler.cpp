@@ -17,12 +17,19 @@ std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
 }
 
 // Sobol's second dimension: generator columns v_k for the primitive
-// polynomial x + 1 (m_1 = 1), v_1 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1).
+// polynomial x + 1 (m_1 = 1), v_1 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1),
+// folded into one table per index byte: four lookups instead of a 32-step
+// loop (shuffled indices use all 32 bits).
 struct SobolDim1 {
-  std::uint32_t v[32];
-  constexpr SobolDim1() : v() {
+  std::uint32_t byte[4][256];
+  constexpr SobolDim1() : byte() {
+    std::uint32_t v[32] = {};
     v[0] = 0x80000000u;
     for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int b = 0; b < 4; ++b)
+      for (int x = 0; x < 256; ++x)
+        for (int k = 0; k < 8; ++k)
+          if (x >> k & 1) byte[b][x] ^= v[8 * b + k];
   }
 };
 constexpr SobolDim1 kDim1;
@@ -46,10 +53,8 @@ std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
 }
 
 std::uint32_t sobol_dim1(std::uint32_t index) {
-  std::uint32_t r = 0;
-  for (int k = 0; index; ++k, index >>= 1)
-    if (index & 1u) r ^= kDim1.v[k];
-  return r;
+  return kDim1.byte[0][index & 255] ^ kDim1.byte[1][index >> 8 & 255] ^
+         kDim1.byte[2][index >> 16 & 255] ^ kDim1.byte[3][index >> 24];
 }
 
 void Sampler::sobol2d(float& u, float& v) {
