@@ -10,7 +10,9 @@
 #   2. renders, once, a reference per scene at REF_FACTOR (64) times the
 #      largest study count (cached in $BUILD/references/, reused if present;
 #      FORCE_REFS=1 renders them again), plus a converged image of the
-#      report's method for the agreement check;
+#      report's method for the agreement check; the closed-form scene
+#      (closed-sphere, bench/convergence/closed_sphere.py) gets its exact
+#      image instead of a rendered reference;
 #   3. renders every scene at 1, 2, 4, ... MAX_SPP (cat: CAT_MAX_SPP, for the
 #      issue's 1024-spp target) samples per pixel, SEEDS seeds, both methods
 #      interleaved (so a change of machine load hits both alike), and measures
@@ -32,8 +34,8 @@
 # for what carries over to 512x512.
 #
 # Environment knobs: WHISKER_BUILD (build dir, default build/), RES, SEEDS,
-# MAX_SPP, CAT_MAX_SPP, SCENES, THREADS, REF_FACTOR, AGREE_FACTOR,
-# FULLRES_SPP, FORCE_REFS.
+# MAX_SPP, CAT_MAX_SPP, SCENES, CLOSED_RES, THREADS, REF_FACTOR, AGREE_FACTOR,
+# FULLRES_SPP, FORCE_REFS, CONV_OUT (output dir, default $BUILD/convergence).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -42,7 +44,8 @@ RES=${RES:-64}
 SEEDS=${SEEDS:-"1 2 3"}
 MAX_SPP=${MAX_SPP:-256}
 CAT_MAX_SPP=${CAT_MAX_SPP:-1024}
-SCENES=${SCENES:-"three-balls-fresnel indirect cat"}
+SCENES=${SCENES:-"three-balls-fresnel indirect cat closed-sphere"}
+CLOSED_RES=${CLOSED_RES:-32}  # every path of the closed sphere runs to full depth: smaller
 THREADS=${THREADS:-$(nproc)}
 REF_FACTOR=${REF_FACTOR:-64}     # reference spp = REF_FACTOR x MAX_SPP
 AGREE_FACTOR=${AGREE_FACTOR:-16} # report-method converged image spp = AGREE_FACTOR x MAX_SPP
@@ -51,7 +54,7 @@ FORCE_REFS=${FORCE_REFS:-0}
 REF_SEED=1000
 AGREE_SEED=2000
 
-OUT=$BUILD/convergence
+OUT=${CONV_OUT:-$BUILD/convergence}  # results of this run (runs/ is emptied at the start)
 REFS=$BUILD/references
 RUNS=$OUT/runs
 SCENE_DIR=$OUT/scenes
@@ -88,9 +91,20 @@ mkdir -p "$OUT" "$REFS" "$SCENE_DIR"
 rm -rf "$RUNS"
 mkdir -p "$RUNS"
 
-# A copy of a bundled scene at another resolution (same camera, same fov).
+# A copy of a bundled scene at another resolution (same camera, same fov);
+# for closed-sphere, the scene and its exact image.
+res_of() { if [ "$1" = closed-sphere ]; then echo "$CLOSED_RES"; else echo "$RES"; fi; }
+ref_of() {  # name -> reference image
+  if [ "$1" = closed-sphere ]; then echo "$REFS/closed-sphere-$CLOSED_RES-exact.pfm"
+  else echo "$REFS/$1-${RES}-sobol-zc-$REF_SPP.pfm"; fi
+}
 derive_scene() {  # name res -> path
   local name=$1 res=$2 dst=$SCENE_DIR/$1-$2.json
+  if [ "$name" = closed-sphere ]; then
+    python3 "$ROOT/bench/convergence/closed_sphere.py" "$dst" "$(ref_of closed-sphere)" "$res"
+    echo "$dst"
+    return
+  fi
   python3 - "$ROOT/assets/scenes/$name.json" "$dst" "$res" <<'EOF'
 import json, sys
 src, dst, res = sys.argv[1], sys.argv[2], int(sys.argv[3])
@@ -120,7 +134,7 @@ REF_SPP=$((REF_FACTOR * MAX_SPP))
 AGREE_SPP=$((AGREE_FACTOR * MAX_SPP))
 {
   echo "{"
-  echo "  \"res\": $RES, \"threads\": $THREADS, \"ref_spp\": $REF_SPP, \"agree_spp\": $AGREE_SPP,"
+  echo "  \"res\": $RES, \"closed_res\": $CLOSED_RES, \"threads\": $THREADS, \"ref_spp\": $REF_SPP, \"agree_spp\": $AGREE_SPP,"
   echo "  \"seeds\": \"$SEEDS\", \"nproc\": $(nproc),"
   echo "  \"cpu\": \"$(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //')\","
   echo "  \"commit\": \"$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)\","
@@ -132,15 +146,18 @@ AGREE_SPP=$((AGREE_FACTOR * MAX_SPP))
 
 # --- 2. references (cached) -------------------------------------------------
 for name in $SCENES; do
-  scene=$(derive_scene "$name" "$RES")
-  ref=$REFS/$name-${RES}-sobol-zc-$REF_SPP.pfm
-  agree=$REFS/$name-${RES}-report-$AGREE_SPP.pfm
-  if [ "$FORCE_REFS" = 1 ] || [ ! -f "$ref" ]; then
+  res=$(res_of "$name")
+  scene=$(derive_scene "$name" "$res")
+  ref=$(ref_of "$name")
+  agree=$REFS/$name-${res}-report-$AGREE_SPP.pfm
+  if [ "$name" = closed-sphere ]; then
+    echo '{"exact": true}' >"${ref%.pfm}.json"
+  elif [ "$FORCE_REFS" = 1 ] || [ ! -f "$ref" ]; then
     log "reference $name ${RES}x$RES at $REF_SPP spp (sobol, zero cut-off)"
     render "$scene" "$REF_SPP" "$REF_SEED" "$ref" "${ref%.pfm}.json" --sampler sobol --zero-cutoff on
   fi
   if [ "$FORCE_REFS" = 1 ] || [ ! -f "$agree" ]; then
-    log "converged report-method image $name ${RES}x$RES at $AGREE_SPP spp"
+    log "converged report-method image $name ${res}x$res at $AGREE_SPP spp"
     render "$scene" "$AGREE_SPP" "$AGREE_SEED" "$agree" "${agree%.pfm}.json" "${REPORT_FLAGS[@]}"
   fi
   "$COMPARE" "$agree" "$ref" --json "$RUNS/agree-$name.json" >/dev/null
@@ -150,8 +167,8 @@ done
 
 # --- 3. the study -----------------------------------------------------------
 for name in $SCENES; do
-  scene=$SCENE_DIR/$name-$RES.json
-  ref=$REFS/$name-${RES}-sobol-zc-$REF_SPP.pfm
+  scene=$SCENE_DIR/$name-$(res_of "$name").json
+  ref=$(ref_of "$name")
   max=$MAX_SPP
   [ "$name" = cat ] && max=$CAT_MAX_SPP
   log "$name: spp $(pow2_list "$max"), seeds $SEEDS"

@@ -136,8 +136,9 @@ def main():
         c["mse"].append(sum(r["mse"] for r in rs) / len(rs))
         c["rel"].append(sum(r["rel_mse"] for r in rs) / len(rs))
         flags[(scene, method)] = f"--sampler {rs[0]['sampler']} --zero-cutoff {rs[0]['zero_cutoff']}"
-    scenes = sorted({k[0] for k in curves}, key=lambda s: ["three-balls-fresnel", "indirect", "cat"].index(s)
-                    if s in ["three-balls-fresnel", "indirect", "cat"] else 99)
+    order = ["three-balls-fresnel", "indirect", "cat", "closed-sphere"]
+    scenes = sorted({k[0] for k in curves}, key=lambda s: order.index(s) if s in order else 99)
+    res_of = {r["scene"]: r["width"] for r in rows}
     loads = [float(r["load1"]) for r in rows if r["load1"]]
 
     # --- gnuplot ------------------------------------------------------------
@@ -161,7 +162,7 @@ def main():
         with open(os.path.join(out, f"{scene}.gp"), "w") as f:
             f.write(f"""set terminal pngcairo size 720,520 noenhanced font ',10'
 set output '{png}'
-set title "{scene}, {res}x{res}: MSE against render time (mean of {len(machine['seeds'].split())} seeds; 1..{max(curves[(scene, 'report')]['spp'])} spp)"
+set title "{scene}, {res_of[scene]}x{res_of[scene]}: MSE against render time (mean of {len(machine['seeds'].split())} seeds; 1..{max(curves[(scene, 'report')]['spp'])} spp)"
 set logscale xy
 set xlabel 'seconds (render time, --stats)'
 set ylabel 'MSE (radiance / 255^2.2, vs reference)'
@@ -175,7 +176,8 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
 
     # --- tables -------------------------------------------------------------
     p = print
-    p(f"Resolution {res}x{res} (same camera and field of view as 512x512), "
+    p(f"Resolution {res}x{res} (same camera and field of view as 512x512; closed-sphere "
+      f"{machine.get('closed_res', res)}x{machine.get('closed_res', res)}), "
       f"{machine['threads']} threads, seeds {machine['seeds']}, commit {machine['commit']}"
       f"{' + uncommitted changes' if machine.get('dirty') else ''}, {machine['date']}; "
       f"{machine['cpu']}, nproc={machine['nproc']}; load average 1 min at the runs: "
@@ -223,7 +225,7 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
       f"(Whisker's Sobol sampler with the zero cut-off, {machine['ref_spp']} spp, other seeds). "
       "Expected MSE if both are unbiased = the two images' own noise, "
       "C_report / N_agree + C_best / N_ref, with C = n x MSE(n) from the study at 256 spp; "
-      "z = mean signed difference over its standard error.")
+      "z = mean signed difference over its standard error. closed-sphere: against its exact image.")
     p()
     p("| scene | MSE observed | MSE expected from noise | ratio | mean difference (% of mean) | z |")
     p("|---|---|---|---|---|---|")
@@ -234,11 +236,18 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
         a = load(path)
         tb, eb, _, n = summary[(scene, "best")]
         tr, er, _, _ = summary[(scene, "report")]
-        var_ref = eb * n / machine["ref_spp"]
+        exact = scene == "closed-sphere"
+        var_ref = 0.0 if exact else eb * n / machine["ref_spp"]
         c_rep = n * max(er - var_ref, 0.0)
         expected = c_rep / machine["agree_spp"] + var_ref
         p(f"| {scene} | {fmt(a['mse'])} | {fmt(expected)} | {fmt(a['mse'] / expected)} | "
           f"{100 * a['mean_diff'] / a['mean_reference']:+.3f} % | {a['mean_diff_z']:+.2f} |")
+    zs = [r["mean_diff_z"] for r in rows
+          if r["scene"] == "closed-sphere" and r["method"] == "best" and r["spp"] >= 64]
+    if zs:
+        p()
+        p("closed-sphere, Whisker best against the exact image at 64 to 256 spp: z of the mean "
+          f"difference over {len(zs)} renders: {', '.join(f'{z:+.2f}' for z in zs)}.")
     p()
 
     # --- the cat target -----------------------------------------------------
