@@ -89,7 +89,13 @@ COMPARE=$BUILD/bench/convergence/whisker-compare
 
 mkdir -p "$OUT" "$REFS" "$SCENE_DIR"
 rm -rf "$RUNS"
-mkdir -p "$RUNS"
+mkdir -p "$RUNS" "$OUT/bin"
+# Run private copies: a rebuild of the build dir during the run (another
+# engineer, another run) must not swap the renderer in the middle of a study.
+cp "$WHISKER" "$OUT/bin/whisker"
+cp "$COMPARE" "$OUT/bin/whisker-compare"
+WHISKER=$OUT/bin/whisker
+COMPARE=$OUT/bin/whisker-compare
 
 # A copy of a bundled scene at another resolution (same camera, same fov);
 # for closed-sphere, the scene and its exact image.
