@@ -226,10 +226,9 @@ int run_viewer(const ViewerOptions& opt) {
   glfwSetErrorCallback(on_glfw_error);
   if (!glfwInit()) {
     std::fprintf(stderr,
-                 "whisker: cannot open a window: no display (%s).\n"
-                 "  Render without a window with --headless.\n",
+                 "whisker: cannot open a window: no display (%s).\n",
                  g_glfw_error.c_str());
-    return 3;
+    return 3;  // the caller suggests --headless
   }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
@@ -260,16 +259,14 @@ int run_viewer(const ViewerOptions& opt) {
   GLFWwindow* window = glfwCreateWindow(win_w, win_h, "Whisker", nullptr, nullptr);
   if (!window) {
     std::fprintf(stderr,
-                 "whisker: cannot open an OpenGL 3.3 core window (%s).\n"
-                 "  Render without a window with --headless.\n",
+                 "whisker: cannot open an OpenGL 3.3 core window (%s).\n",
                  g_glfw_error.c_str());
     glfwTerminate();
     return 3;
   }
   glfwMakeContextCurrent(window);
   if (!gladLoadGL(glfwGetProcAddress)) {
-    std::fprintf(stderr, "whisker: cannot load OpenGL 3.3 functions.\n"
-                         "  Render without a window with --headless.\n");
+    std::fprintf(stderr, "whisker: cannot load OpenGL 3.3 functions.\n");
     glfwDestroyWindow(window);
     glfwTerminate();
     return 3;
