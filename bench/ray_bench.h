@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <ctime>
 #include <cstddef>
 #include <string>
 #include <thread>
@@ -33,10 +34,19 @@ struct Timing {
   double mrays_per_s(std::size_t rays) const { return rays / seconds * 1e-6; }
 };
 
+inline double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
 // Runs `trace(ray, t) -> bool` over all rays `reps` times on `threads`
-// threads (work taken in chunks from an atomic counter); the median time.
+// threads (work taken in chunks from an atomic counter); the median wall
+// time, or with use_min the fastest run, measured on one thread as that
+// thread's CPU time (for tuning while other processes share the cores).
 template <class Trace>
-Timing time_trace(const std::vector<Ray>& rays, int threads, int reps, const Trace& trace) {
+Timing time_trace(const std::vector<Ray>& rays, int threads, int reps, const Trace& trace,
+                  bool use_min = false) {
   constexpr std::size_t kChunk = 1024;
   std::vector<double> times;
   Timing out;
@@ -61,7 +71,13 @@ Timing time_trace(const std::vector<Ray>& rays, int threads, int reps, const Tra
     };
     const auto start = std::chrono::steady_clock::now();
     if (threads == 1) {
+      const double cpu0 = thread_cpu_seconds();
       work(0);
+      if (use_min) {  // tuning on a shared machine: this thread's CPU time
+        times.push_back(thread_cpu_seconds() - cpu0);
+        out.result = part[0];
+        continue;
+      }
     } else {
       std::vector<std::thread> pool;
       for (int i = 0; i < threads; ++i) pool.emplace_back(work, i);
@@ -76,7 +92,7 @@ Timing time_trace(const std::vector<Ray>& rays, int threads, int reps, const Tra
     out.result = total;
   }
   std::sort(times.begin(), times.end());
-  out.seconds = times[times.size() / 2];
+  out.seconds = use_min ? times.front() : times[times.size() / 2];
   return out;
 }
 

@@ -12,35 +12,6 @@ namespace {
 // Leaves of the binary SAH tree hold at most one packet.
 constexpr std::uint32_t kSahMaxLeaf = kWidth;
 
-// The report's loop over every triangle (its figure 7), keeping the nearest.
-bool brute_intersect(const std::vector<Triangle>& tris, const Ray& ray, Hit& hit) {
-  const WatertightRay w(ray);
-  float best = std::min(ray.tmax, hit.t);
-  bool found = false;
-  for (std::size_t i = 0; i < tris.size(); ++i) {
-    float t, u, v;
-    if (intersect_triangle(w, tris[i], ray.tmin, best, t, u, v)) {
-      best = t;
-      hit.t = t;
-      hit.kind = PrimKind::Triangle;
-      hit.prim = static_cast<std::uint32_t>(i);
-      hit.u = u;
-      hit.v = v;
-      found = true;
-    }
-  }
-  return found;
-}
-
-bool brute_occluded(const std::vector<Triangle>& tris, const Ray& ray) {
-  const WatertightRay w(ray);
-  for (const Triangle& tri : tris) {
-    float t, u, v;
-    if (intersect_triangle(w, tri, ray.tmin, ray.tmax, t, u, v)) return true;
-  }
-  return false;
-}
-
 // Slab test of one box, conservative as in bvh_wide.cpp.
 bool box_hit(const Box3& b, const Ray& ray, float tmax) {
   float tn = ray.tmin, tf = kInf;
@@ -52,7 +23,7 @@ bool box_hit(const Box3& b, const Ray& ray, float tmax) {
     tn = std::max(tn, std::min(t0, t1));
     tf = std::min(tf, std::max(t0, t1));
   }
-  return tn <= std::min(tf * (1.0f + 4e-7f), tmax);
+  return tn <= std::min(tf * (1.0f + 4e-7f), tmax);  // 1 + 2 gamma(3), rounded up (Ize 2013)
 }
 
 // Exactly zero area: the edge cross product is zero. Products of floats are
@@ -78,11 +49,11 @@ Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
     if (zero_area(t)) t = Triangle{t.v0, t.v0, t.v0};
   switch (kind) {
     case AccelKind::Brute:
-      b.tris_ = std::move(tris);
+      b.wide_ = packets_only(tris);
       break;
     case AccelKind::BBox:
       for (const Triangle& t : tris) b.box_.grow(bounds_of(t));
-      b.tris_ = std::move(tris);
+      b.wide_ = packets_only(tris);
       b.node_count_ = 1;
       break;
     case AccelKind::Midpoint:
@@ -100,30 +71,17 @@ Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
 }
 
 bool Bvh::intersect(const Ray& ray, Hit& hit) const {
-  switch (kind_) {
-    case AccelKind::Brute:
-      return brute_intersect(tris_, ray, hit);
-    case AccelKind::BBox:
-      return box_hit(box_, ray, std::min(ray.tmax, hit.t)) && brute_intersect(tris_, ray, hit);
-    default:
-      return wide_.intersect(ray, hit);
-  }
+  if (kind_ == AccelKind::BBox && !box_hit(box_, ray, std::min(ray.tmax, hit.t))) return false;
+  return wide_.intersect(ray, hit);
 }
 
 bool Bvh::occluded(const Ray& ray) const {
-  switch (kind_) {
-    case AccelKind::Brute:
-      return brute_occluded(tris_, ray);
-    case AccelKind::BBox:
-      return box_hit(box_, ray, ray.tmax) && brute_occluded(tris_, ray);
-    default:
-      return wide_.occluded(ray);
-  }
+  if (kind_ == AccelKind::BBox && !box_hit(box_, ray, ray.tmax)) return false;
+  return wide_.occluded(ray);
 }
 
 std::size_t Bvh::bytes() const {
-  return tris_.size() * sizeof(Triangle) + wide_.nodes.size() * sizeof(WideNode) +
-         wide_.packets.size() * sizeof(TriPacket);
+  return wide_.nodes.size() * sizeof(WideNode) + wide_.packets.size() * sizeof(TriPacket);
 }
 
 }  // namespace whisker

@@ -2,8 +2,9 @@
 //
 // Sah and Midpoint build a binary tree (bvh_build.h), then collapse it into an
 // 8-wide tree (bvh_wide.h): one node holds the boxes of up to 8 children in
-// SIMD layout, a leaf is a run of 8-triangle packets. Brute and BBox keep the
-// report's plain triangle loop (its figure 7 and its one-box step).
+// SIMD layout, a leaf is a run of 8-triangle packets. Brute and BBox are the
+// report's figure 7 loop over every triangle (without, then behind one box),
+// testing the same packets 8 triangles at a time.
 #pragma once
 
 #include <cstddef>
@@ -37,9 +38,8 @@ class Bvh {
 
  private:
   AccelKind kind_ = AccelKind::Brute;
-  std::vector<Triangle> tris_;  // Brute and BBox only
-  Box3 box_;                    // BBox only
-  WideBvh wide_;                // Midpoint and Sah
+  Box3 box_;      // BBox only
+  WideBvh wide_;  // the tree (Midpoint, Sah) or only the packets (Brute, BBox)
   std::size_t tri_count_ = 0;
   std::size_t node_count_ = 0;
   double build_seconds_ = 0.0;

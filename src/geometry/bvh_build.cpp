@@ -11,6 +11,14 @@ constexpr int kBins = 32;
 // traversal stack) stays bounded whatever the input: at most 40 + 32 levels.
 constexpr int kMaxSahDepth = 40;
 
+// Costs in units of one 8-triangle packet test, which costs the same for 1
+// or 8 triangles (the leaf cost of Embree's SAH builders for its
+// N-triangle leaves); a binary split costs about two packet tests, since a
+// wide node visit stands for about three binary levels. Tuned on the cat's
+// ray files (docs/PERFORMANCE.md).
+constexpr float kCt = 2.0f;
+inline float leaf_cost(std::uint32_t n) { return static_cast<float>((n + kWidth - 1) / kWidth); }
+
 struct Builder {
   std::vector<Box3> boxes;
   std::vector<vec3> cents;
@@ -66,8 +74,7 @@ struct Builder {
       make_leaf(node, b, e);
       return node;
     }
-    // Cost in units of one triangle test, one box test costing about as much
-    // (Ct = Ci = 1): a split costs Ct + sum(A_side / A * N_side).
+    // A split costs kCt + sum(A_side / A * leaf_cost(N_side)).
     float best = kInf;
     int best_axis = -1, best_bin = 0;
     if (depth < kMaxSahDepth) {
@@ -89,7 +96,7 @@ struct Builder {
         for (int k = kBins - 1; k > 0; --k) {
           acc.grow(bin_box[k]);
           cnt += bin_n[k];
-          right_cost[k] = acc.half_area() * static_cast<float>(cnt);
+          right_cost[k] = acc.half_area() * leaf_cost(cnt);
         }
         acc = Box3{};
         cnt = 0;
@@ -97,7 +104,7 @@ struct Builder {
           acc.grow(bin_box[k]);
           cnt += bin_n[k];
           if (cnt == 0 || cnt == n) continue;
-          const float c = acc.half_area() * static_cast<float>(cnt) + right_cost[k + 1];
+          const float c = acc.half_area() * leaf_cost(cnt) + right_cost[k + 1];
           if (c < best) {
             best = c;
             best_axis = axis;
@@ -107,8 +114,8 @@ struct Builder {
       }
     }
     const float area = out.nodes[node].box.half_area();
-    const float split_cost = 1.0f + (area > 0.0f ? best / area : 0.0f);
-    if (n <= max_leaf && (best_axis < 0 || static_cast<float>(n) <= split_cost)) {
+    const float split_cost = kCt + (area > 0.0f ? best / area : 0.0f);
+    if (n <= max_leaf && (best_axis < 0 || leaf_cost(n) <= split_cost)) {
       make_leaf(node, b, e);
       return node;
     }

@@ -96,6 +96,16 @@ WideBvh collapse_to_wide(const BinaryBvh& bin, const std::vector<Triangle>& tris
   return std::move(c.out);
 }
 
+WideBvh packets_only(const std::vector<Triangle>& tris) {
+  BinaryBvh bin;
+  BinaryNode all;
+  all.count = static_cast<std::uint32_t>(tris.size());
+  for (std::uint32_t i = 0; i < all.count; ++i) bin.prims.push_back(i);
+  Collapser c{bin, tris, {}};
+  if (all.count > 0) c.leaf_ref(all);  // only its packets are kept
+  return std::move(c.out);
+}
+
 // --------------------------------------------------------------- traversal --
 
 namespace {
@@ -124,7 +134,8 @@ struct StackEntry {
 #ifdef WHISKER_BVH_AVX2
 
 struct RayAvx {
-  __m256 ox, oy, oz, ix, iy, iz;
+  __m256 ix, iy, iz;                 // 1 / d
+  __m256 onx, ony, onz, ofx, ofy, ofz;  // o / d, nudged (see below)
   int near_x, near_y, near_z;  // offsets (in floats) of the near-plane rows
   int far_x, far_y, far_z;
   // Watertight test, in the permuted axes of WatertightRay.
@@ -134,12 +145,21 @@ struct RayAvx {
   explicit RayAvx(const Ray& r) {
     const WatertightRay w(r);
     const float inv[3] = {safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)};
-    ox = _mm256_set1_ps(r.o.x);
-    oy = _mm256_set1_ps(r.o.y);
-    oz = _mm256_set1_ps(r.o.z);
     ix = _mm256_set1_ps(inv[0]);
     iy = _mm256_set1_ps(inv[1]);
     iz = _mm256_set1_ps(inv[2]);
+    // A slab distance as one FMA, b * (1/d) - o * (1/d), errs by up to an
+    // ulp of o/d besides the ulps of t that kFarScale covers. Moving o/d by
+    // 4 of its ulps (up for near planes, down for far ones) keeps the test
+    // conservative: near never later, far never earlier than exact.
+    __m256* on[3] = {&onx, &ony, &onz};
+    __m256* of[3] = {&ofx, &ofy, &ofz};
+    for (int a = 0; a < 3; ++a) {
+      const float oi = r.o[a] * inv[a];
+      const float slack = std::fabs(oi) * (4.0f * 0x1p-24f) + 1e-37f;
+      *on[a] = _mm256_set1_ps(oi + slack);
+      *of[a] = _mm256_set1_ps(oi - slack);
+    }
     // lo[a] starts at float offset a*8, hi[a] at 24 + a*8.
     near_x = inv[0] >= 0.0f ? 0 : 24;
     near_y = inv[1] >= 0.0f ? 8 : 32;
@@ -164,12 +184,12 @@ struct RayAvx {
 inline unsigned box_test(const RayAvx& r, const WideNode& n, __m256 tmin, __m256 tmax,
                          __m256& tnear) {
   const float* base = &n.lo[0][0];
-  const __m256 nx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_x), r.ox), r.ix);
-  const __m256 ny = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_y), r.oy), r.iy);
-  const __m256 nz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.near_z), r.oz), r.iz);
-  const __m256 fx = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_x), r.ox), r.ix);
-  const __m256 fy = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_y), r.oy), r.iy);
-  const __m256 fz = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(base + r.far_z), r.oz), r.iz);
+  const __m256 nx = _mm256_fmsub_ps(_mm256_load_ps(base + r.near_x), r.ix, r.onx);
+  const __m256 ny = _mm256_fmsub_ps(_mm256_load_ps(base + r.near_y), r.iy, r.ony);
+  const __m256 nz = _mm256_fmsub_ps(_mm256_load_ps(base + r.near_z), r.iz, r.onz);
+  const __m256 fx = _mm256_fmsub_ps(_mm256_load_ps(base + r.far_x), r.ix, r.ofx);
+  const __m256 fy = _mm256_fmsub_ps(_mm256_load_ps(base + r.far_y), r.iy, r.ofy);
+  const __m256 fz = _mm256_fmsub_ps(_mm256_load_ps(base + r.far_z), r.iz, r.ofz);
   tnear = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin));
   const __m256 tfar = _mm256_min_ps(
       _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(kFarScale)), tmax);
@@ -224,6 +244,49 @@ inline float lane(__m256 v, unsigned i) {
   return a[i];
 }
 
+// The closest hit so far, over packets of triangles.
+struct Closest {
+  float best;
+  __m256 tmax;
+  bool found = false;
+  std::uint32_t prim = 0;
+  float u = 0.0f, v = 0.0f;
+
+  explicit Closest(float tmax_) : best(tmax_), tmax(_mm256_set1_ps(tmax_)) {}
+
+  void packets(const RayAvx& r, const TriPacket* p, std::size_t count, __m256 tmin) {
+    for (std::size_t k = 0; k < count; ++k) {
+      __m256 t, e1, e2, inv;
+      unsigned mask = tri_test(r, p[k], tmin, tmax, t, e1, e2, inv);
+      if (mask == 0) continue;
+      alignas(32) float ts[kWidth];
+      _mm256_store_ps(ts, t);
+      unsigned bi = static_cast<unsigned>(__builtin_ctz(mask));
+      for (mask &= mask - 1; mask; mask &= mask - 1) {
+        const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
+        if (ts[i] < ts[bi]) bi = i;
+      }
+      best = ts[bi];
+      tmax = _mm256_set1_ps(best);
+      const float iv = lane(inv, bi);
+      u = lane(e1, bi) * iv;
+      v = lane(e2, bi) * iv;
+      prim = p[k].prim[bi];
+      found = true;
+    }
+  }
+
+  bool store(Hit& hit) const {
+    if (!found) return false;
+    hit.t = best;
+    hit.kind = PrimKind::Triangle;
+    hit.prim = prim;
+    hit.u = u;
+    hit.v = v;
+    return true;
+  }
+};
+
 #endif  // WHISKER_BVH_AVX2
 
 inline bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
@@ -235,15 +298,14 @@ inline std::uint32_t leaf_packets(std::uint32_t ref) { return ((ref >> 24) & 0x7
 #ifdef WHISKER_BVH_AVX2
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
-  if (nodes.empty()) return false;
+  if (packets.empty()) return false;
   const RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
-  float best = std::min(ray.tmax, hit.t);
-  __m256 tmax = _mm256_set1_ps(best);
-  bool found = false;
-  std::uint32_t best_prim = 0;
-  float best_u = 0.0f, best_v = 0.0f;
-
+  Closest c(std::min(ray.tmax, hit.t));
+  if (nodes.empty()) {  // brute force: every packet
+    c.packets(r, packets.data(), packets.size(), tmin);
+    return c.store(hit);
+  }
   StackEntry stack[kStackSize];
   int sp = 0;
   std::uint32_t ref = 0;
@@ -251,7 +313,7 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
     if (!is_leaf(ref)) {
       const WideNode& n = nodes[ref];
       __m256 tnear;
-      unsigned mask = box_test(r, n, tmin, tmax, tnear);
+      unsigned mask = box_test(r, n, tmin, c.tmax, tnear);
       if (mask != 0) {
         const unsigned first = static_cast<unsigned>(__builtin_ctz(mask));
         mask &= mask - 1;
@@ -283,52 +345,34 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
         continue;
       }
     } else {
-      const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
-      for (std::uint32_t p = first; p < first + count; ++p) {
-        __m256 t, e1, e2, inv;
-        unsigned mask = tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv);
-        if (mask == 0) continue;
-        alignas(32) float ts[kWidth];
-        _mm256_store_ps(ts, t);
-        unsigned bi = static_cast<unsigned>(__builtin_ctz(mask));
-        for (mask &= mask - 1; mask; mask &= mask - 1) {
-          const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
-          if (ts[i] < ts[bi]) bi = i;
-        }
-        best = ts[bi];
-        tmax = _mm256_set1_ps(best);
-        const float iv = lane(inv, bi);
-        best_u = lane(e1, bi) * iv;
-        best_v = lane(e2, bi) * iv;
-        best_prim = packets[p].prim[bi];
-        found = true;
-      }
+      c.packets(r, &packets[leaf_first(ref)], leaf_packets(ref), tmin);
     }
     // Pop the next node that may still hold a closer hit.
     for (;;) {
       if (sp == 0) goto done;
       const StackEntry& e = stack[--sp];
-      if (e.t <= best) {
+      if (e.t <= c.best) {
         ref = e.ref;
         break;
       }
     }
   }
 done:
-  if (!found) return false;
-  hit.t = best;
-  hit.kind = PrimKind::Triangle;
-  hit.prim = best_prim;
-  hit.u = best_u;
-  hit.v = best_v;
-  return true;
+  return c.store(hit);
 }
 
 bool WideBvh::occluded(const Ray& ray) const {
-  if (nodes.empty()) return false;
+  if (packets.empty()) return false;
   const RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
   const __m256 tmax = _mm256_set1_ps(ray.tmax);
+  if (nodes.empty()) {  // brute force: every packet
+    for (const TriPacket& p : packets) {
+      __m256 t, e1, e2, inv;
+      if (tri_test(r, p, tmin, tmax, t, e1, e2, inv)) return true;
+    }
+    return false;
+  }
   std::uint32_t stack[kStackSize];
   int sp = 0;
   stack[sp++] = 0;
@@ -383,13 +427,14 @@ inline Triangle packet_tri(const TriPacket& p, int i) {
 }  // namespace
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
-  if (nodes.empty()) return false;
+  if (packets.empty()) return false;
   const RayScalar r(ray);
   float best = std::min(ray.tmax, hit.t);
   bool found = false;
   StackEntry stack[kStackSize];
   int sp = 0;
-  stack[sp++] = {0, ray.tmin};
+  // Brute force (no nodes): one leaf of every packet.
+  stack[sp++] = {nodes.empty() ? kLeafBit : 0u, ray.tmin};
   while (sp > 0) {
     const StackEntry e = stack[--sp];
     if (e.t > best) continue;
@@ -410,7 +455,9 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
       }
       for (int j = 0; j < k; ++j) stack[sp++] = s[j];
     } else {
-      for (std::uint32_t p = leaf_first(e.ref); p < leaf_first(e.ref) + leaf_packets(e.ref); ++p)
+      const std::size_t first = leaf_first(e.ref);
+      const std::size_t count = nodes.empty() ? packets.size() : leaf_packets(e.ref);
+      for (std::size_t p = first; p < first + count; ++p)
         for (int i = 0; i < kWidth; ++i) {
           float t, u, v;
           if (intersect_triangle(r.w, packet_tri(packets[p], i), ray.tmin, best, t, u, v)) {

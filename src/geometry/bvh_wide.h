@@ -64,7 +64,7 @@ struct alignas(32) TriPacket {
 };
 
 struct WideBvh {
-  std::vector<WideNode> nodes;  // nodes[0] is the root
+  std::vector<WideNode> nodes;  // nodes[0] is the root; none: brute force
   std::vector<TriPacket> packets;
 
   bool empty() const { return nodes.empty(); }
@@ -78,5 +78,7 @@ struct BinaryBvh;
 // binary node's children and keeps opening the largest-area inner one until
 // it has 8 (Wald, Benthin, Boulos, "Getting rid of packets", RT 2008).
 WideBvh collapse_to_wide(const BinaryBvh& bin, const std::vector<Triangle>& tris);
+// No tree: every triangle in packets, in their order (brute force).
+WideBvh packets_only(const std::vector<Triangle>& tris);
 
 }  // namespace whisker

@@ -64,7 +64,10 @@ inline float diff_of_products(float a, float b, float c, float d) {
 inline bool intersect_triangle(const WatertightRay& r, const Triangle& tri,
                                float tmin, float tmax, float& t, float& u,
                                float& v) {
-  const vec3 a = tri.v0 - r.o, b = tri.v1 - r.o, c = tri.v2 - r.o;
+  // Plain arrays: indexing a glm vector by a run-time axis compiles to a switch.
+  const float a[3] = {tri.v0.x - r.o.x, tri.v0.y - r.o.y, tri.v0.z - r.o.z};
+  const float b[3] = {tri.v1.x - r.o.x, tri.v1.y - r.o.y, tri.v1.z - r.o.z};
+  const float c[3] = {tri.v2.x - r.o.x, tri.v2.y - r.o.y, tri.v2.z - r.o.z};
   const float ax = std::fma(-r.sx, a[r.kz], a[r.kx]), ay = std::fma(-r.sy, a[r.kz], a[r.ky]);
   const float bx = std::fma(-r.sx, b[r.kz], b[r.kx]), by = std::fma(-r.sy, b[r.kz], b[r.ky]);
   const float cx = std::fma(-r.sx, c[r.kz], c[r.kx]), cy = std::fma(-r.sy, c[r.kz], c[r.ky]);
