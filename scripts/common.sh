@@ -30,16 +30,19 @@ whisker_install() {
     fi
   fi
   whisker_log "installing: ${missing[*]}"
-  export DEBIAN_FRONTEND=noninteractive
   "${sudo[@]}" apt-get update -q || return 1
-  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}" || return 1
+  # Through env: sudo drops DEBIAN_FRONTEND from the environment.
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get install -y -q --no-install-recommends "${missing[@]}" || return 1
 }
 
+# whisker_build [target...]: configure and build the given targets (default: all).
 whisker_build() {
-  local jobs
+  local jobs targets=()
+  [ $# -gt 0 ] && targets=(--target "$@")
   jobs=$(nproc 2>/dev/null || echo 2)
-  if [ ! -f "$WHISKER_BUILD/CMakeCache.txt" ]; then
-    cmake -S "$WHISKER_ROOT" -B "$WHISKER_BUILD" -DCMAKE_BUILD_TYPE=Release || return 1
-  fi
-  cmake --build "$WHISKER_BUILD" -j "$jobs" || return 1
+  # Always configure: cheap when nothing changed, and it recovers a build
+  # directory left behind by a failed configure (cache but no Makefile).
+  cmake -S "$WHISKER_ROOT" -B "$WHISKER_BUILD" -DCMAKE_BUILD_TYPE=Release || return 1
+  cmake --build "$WHISKER_BUILD" -j "$jobs" "${targets[@]}" || return 1
 }

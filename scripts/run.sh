@@ -5,7 +5,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 whisker_install
-whisker_build >&2
+whisker_build whisker >&2  # just the program, not the tests and benchmarks
 
 if [ $# -gt 0 ]; then
   exec "$WHISKER_BUILD/whisker" "$@"
