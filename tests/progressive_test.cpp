@@ -124,3 +124,50 @@ TEST(Progressive, ReachingTheTargetStops) {
   EXPECT_EQ(snap.passes, 3u);
   EXPECT_TRUE(snap.done);
 }
+
+// With previews on, a new generation first shows a coarse image (one sample
+// per 4x4 block, flagged) ...
+TEST(Progressive, CoarsePreviewComesFirst) {
+  // Full size on one worker: the first real pass takes far longer than the
+  // preview (1/16 of its samples), so polling sees the preview.
+  Scene scene = load_scene(resolve_scene("indirect"));
+  scene.settings.target_spp = 1;
+  ProgressiveRenderer r(1);
+  r.set_preview(true);
+  const auto gen = r.set_scene(scene);
+  r.start();
+  Snapshot first;
+  while (!r.snapshot(first)) std::this_thread::yield();
+  EXPECT_TRUE(first.preview);
+  EXPECT_EQ(first.generation, gen);
+  EXPECT_EQ(first.spp, 1u);
+  for (int y = 0; y < 4; ++y)  // blocks of 4x4 share one value
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(first.mean(x + 200, y + 300, 2), first.mean(200, 300, 2));
+  ASSERT_TRUE(r.wait_for(gen, 1));  // previews never satisfy a wait
+  Snapshot done;
+  r.snapshot(done);
+  r.stop();
+  EXPECT_FALSE(done.preview);
+  EXPECT_EQ(done.spp, 1u);
+  EXPECT_EQ(done.passes, 1u);
+}
+
+// ... and the accumulation that follows is exactly the one without
+// previews: the preview never mixes in, also across an edit.
+TEST(Progressive, CoarsePreviewIsNeverAccumulated) {
+  const Scene before = small_scene(1, 0);
+  Scene after = small_scene(2, 4);
+  after.light.position = vec3(5.0f, 20.0f, 30.0f);
+  ProgressiveRenderer r(2);
+  r.set_preview(true);
+  const auto g1 = r.set_scene(before);
+  r.start();
+  ASSERT_TRUE(r.wait_for(g1, 2));
+  const auto g2 = r.set_scene(after);
+  ASSERT_TRUE(r.wait_for(g2, 4));
+  Snapshot s;
+  r.snapshot(s);
+  r.stop();
+  EXPECT_FALSE(s.preview);
+  EXPECT_EQ(s.sum, render(after, 1).sum);
+}

@@ -14,6 +14,7 @@ namespace whisker {
 
 namespace {
 constexpr int kTile = 32;
+constexpr int kPreviewBlock = 4;  // the preview renders one sample per 4x4 block
 using Clock = std::chrono::steady_clock;
 
 float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
@@ -49,6 +50,8 @@ struct ProgressiveRenderer::Job {
   int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   std::vector<double> acc;     // RGB sums, double so millions of samples keep their digits
   std::vector<double> acc_sq;  // luminance sums of squares
+  std::vector<float> preview;  // the coarse preview pass's image
+  bool preview_pass = false;
   std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
   double seconds = 0.0;
 
@@ -147,9 +150,11 @@ bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
   publish_cv_.wait(lock, [&] {
     if (!running_) return true;
     return published_.generation > gen ||
-           (published_.generation == gen && (published_.spp >= spp || published_.done));
+           (published_.generation == gen && !published_.preview &&
+            (published_.spp >= spp || published_.done));
   });
-  return published_.generation == gen && (published_.spp >= spp || published_.done);
+  return published_.generation == gen && !published_.preview &&
+         (published_.spp >= spp || published_.done);
 }
 
 void ProgressiveRenderer::worker_main(int index) {
@@ -193,11 +198,13 @@ bool ProgressiveRenderer::begin_pass() {
     job.acc_sq.assign(pixels, 0.0);
     job.spp_done = job.passes = job.nan_count = job.rays = 0;
     job.seconds = 0.0;
+    job.preview_pass = preview_enabled_;
+    if (job.preview_pass) job.preview.assign(pixels * 3, 0.0f);
   } else {
     lock.unlock();
   }
   const RenderSettings& s = job.scene.settings;
-  int spp = std::max(1, s.spp);
+  int spp = job.preview_pass ? 1 : std::max(1, s.spp);
   if (s.target_spp > 0)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   job.pass_spp = spp;
@@ -229,6 +236,24 @@ void ProgressiveRenderer::run_tiles() {
     const int i1 = std::min(job.height, i0 + kTile), j1 = std::min(job.width, j0 + kTile);
     PathStats stats;
     std::uint64_t nans = 0;
+    if (job.preview_pass) {
+      // One sample at each block's first pixel, copied over the block. Its
+      // sample index lies far beyond any real one, so no sample repeats.
+      for (int i = i0; i < i1; i += kPreviewBlock) {
+        for (int j = j0; j < j1; j += kPreviewBlock) {
+          const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
+          Sampler sampler(scene.settings.sampler, pixel, ~std::uint64_t(0), seed);
+          vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
+          if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) c = vec3(0.0f);
+          for (int y = i; y < std::min(i1, i + kPreviewBlock); ++y)
+            for (int x = j; x < std::min(j1, j + kPreviewBlock); ++x)
+              for (int ch = 0; ch < 3; ++ch)
+                job.preview[(std::size_t(y) * job.width + x) * 3 + ch] = c[ch];
+        }
+      }
+      job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
+      continue;
+    }
     for (int i = i0; i < i1; ++i) {
       for (int j = j0; j < j1; ++j) {
         const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
@@ -261,6 +286,26 @@ void ProgressiveRenderer::run_tiles() {
 void ProgressiveRenderer::end_pass() {
   Job& job = *job_;
   if (job.aborted) return;
+  if (job.preview_pass) {
+    job.preview_pass = false;
+    std::lock_guard lock(publish_mutex_);
+    Snapshot& s = published_;
+    s.width = job.width;
+    s.height = job.height;
+    s.sum = job.preview;
+    s.sum_sq.assign(job.preview.size() / 3, 0.0f);
+    s.spp = 1;
+    s.generation = job.generation;
+    s.version += 1;
+    s.passes = 0;
+    s.nan_count = 0;
+    s.rays = 0;
+    s.seconds = 0.0;
+    s.done = false;
+    s.preview = true;
+    publish_cv_.notify_all();
+    return;
+  }
   job.spp_done += std::uint64_t(job.pass_spp);
   job.passes += 1;
   job.nan_count += job.pass_nans;
@@ -284,6 +329,7 @@ void ProgressiveRenderer::end_pass() {
   s.rays = job.rays;
   s.seconds = job.seconds;
   s.done = target > 0 && job.spp_done >= std::uint64_t(target);
+  s.preview = false;
   publish_cv_.notify_all();
 }
 

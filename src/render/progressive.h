@@ -30,6 +30,9 @@ struct Snapshot {
   std::uint64_t rays = 0;       // rays traced this generation
   double seconds = 0.0;         // render time this generation
   bool done = false;            // reached the target samples per pixel
+  // A coarse preview of a new generation (one sample per 4x4 block, spp = 1
+  // for display): shown until the first real pass, never accumulated.
+  bool preview = false;
 
   // Mean radiance of pixel (x, y), channel c.
   float mean(int x, int y, int c) const {
@@ -61,6 +64,9 @@ class ProgressiveRenderer {
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
   void set_threads(int threads);  // restarts the pool if running
+  // Before the first full pass of every new generation, publish a coarse
+  // preview (1/16 of a pass) so an edit shows at once. Off by default.
+  void set_preview(bool on) { preview_enabled_ = on; }
   int threads() const { return threads_; }
 
   // Copies the latest published pass into `out` if its version differs from
@@ -86,6 +92,7 @@ class ProgressiveRenderer {
   std::unique_ptr<Job> job_;
   std::atomic<bool> paused_{false};
   std::atomic<bool> running_{false};
+  std::atomic<bool> preview_enabled_{false};
   // pending state, guarded by pending_mutex_
   mutable std::mutex pending_mutex_;
   std::condition_variable pending_cv_;
