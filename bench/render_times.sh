@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Render time of the report's scenes at the report's settings, headless, all
+# threads: median of R runs each. Not part of the test run.
+#   bench/render_times.sh [runs=3]       (build/ must be built)
+# Prints a markdown table; the cat at 1024 spp (fig 8) is run once.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+runs=${1:-3}
+bin=build/whisker
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+
+row() {  # name, runs, whisker options...
+  local name=$1 n=$2
+  shift 2
+  local secs=() k
+  for ((k = 0; k < n; k++)); do
+    "$bin" --headless --quiet "$@" --stats "$out/s.json" >/dev/null
+    secs+=("$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["seconds"])' "$out/s.json")")
+  done
+  local med
+  med=$(printf '%s\n' "${secs[@]}" | median)
+  python3 - "$name" "$med" "$n" "$out/s.json" "$*" <<'PY'
+import json, sys
+name, med, n, path, args = sys.argv[1], float(sys.argv[2]), sys.argv[3], sys.argv[4], sys.argv[5]
+s = json.load(open(path))
+px = s["width"] * s["height"] * s["spp"]
+print(f"| {name} | {s['spp']} | {med:.3f} | {px / med / 1e6:.2f} | {s['rays'] / s['seconds'] / 1e6:.2f} | {n} | `{args}` |")
+PY
+}
+
+echo "| scene | spp | seconds (median) | Mpaths/s | Mrays/s | runs | options |"
+echo "|---|---|---|---|---|---|---|"
+row diffuse-ball "$runs" --scene diffuse-ball --frames 1
+row three-balls "$runs" --scene three-balls --frames 1
+row three-balls-fresnel "$runs" --scene three-balls-fresnel --frames 64 --spp 16
+row indirect "$runs" --scene indirect --frames 2 --spp 16
+row antialiased-ball "$runs" --scene antialiased-ball --frames 2 --spp 16
+row cat-brute 1 --scene cat-brute --frames 1
+row "cat (fig 8)" 1 --scene cat --frames 64 --spp 16
