@@ -17,7 +17,8 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include "geometry/mesh.h"
+#include "geometry/bvh.h"
+#include "geometry/world.h"
 #include "render/image_io.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
@@ -54,11 +55,16 @@ void on_glfw_error(int code, const char* text) {
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
 
-std::size_t count_triangles(const Scene& scene) {
-  std::size_t n = 0;
-  for (const MeshObject& m : scene.meshes)
-    if (m.mesh) n += m.mesh->triangles.size();
-  return n;
+// Triangle and BVH node counts for the panel. The renderer does not expose
+// its World, so build one here: once per loaded scene, milliseconds for the cat.
+void count_geometry(const Scene& scene, ViewerState& s) {
+  try {
+    const World world(scene);
+    s.triangles = world.triangle_count();
+    s.nodes = world.bvh() ? world.bvh()->node_count() : 0;
+  } catch (const std::exception&) {
+    s.triangles = s.nodes = 0;
+  }
 }
 
 std::string scene_label_of(const Scene& scene, const std::string& path) {
@@ -102,7 +108,7 @@ struct Controller {
       s.applied = scene;
       s.scene_label = scene_label_of(scene, path.string());
       s.path_field = path.string();
-      s.triangles = count_triangles(scene);
+      count_geometry(scene, s);
       s.generation = renderer.set_scene(scene);
       s.last_change = now;
       s.message = "loaded " + path.string();
@@ -313,7 +319,7 @@ int run_viewer(const ViewerOptions& opt) {
     s.initial = s.applied = s.edited = opt.scene;
     s.scene_label = scene_label_of(opt.scene, opt.scene_path);
     s.path_field = opt.scene_path;
-    s.triangles = count_triangles(opt.scene);
+    count_geometry(opt.scene, s);
     try {
       s.scene_names = list_scenes();
     } catch (const std::exception& e) {
