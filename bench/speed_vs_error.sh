@@ -9,10 +9,10 @@
 #   1. builds whisker and whisker-compare (configures the build dir if needed);
 #   2. renders, once, a reference per scene at REF_FACTOR (64) times the
 #      largest study count (cached in $BUILD/references/, reused if present;
-#      FORCE_REFS=1 renders them again), plus a converged image of the
-#      report's method for the agreement check; the closed-form scene
-#      (closed-sphere, bench/convergence/closed_sphere.py) gets its exact
-#      image instead of a rendered reference;
+#      FORCE_REFS=1 renders them again), plus converged images of both
+#      methods (AGREE_FACTOR x the largest count) for the agreement check;
+#      the closed-form scene (closed-sphere, bench/convergence/closed_sphere.py)
+#      gets its exact image instead of a rendered reference;
 #   3. renders every scene at 1, 2, 4, ... MAX_SPP (cat: CAT_MAX_SPP, for the
 #      issue's 1024-spp target) samples per pixel, SEEDS seeds, both methods
 #      interleaved (so a change of machine load hits both alike), and measures
@@ -53,6 +53,7 @@ FULLRES_SPP=${FULLRES_SPP:-8}
 FORCE_REFS=${FORCE_REFS:-0}
 REF_SEED=1000
 AGREE_SEED=2000
+AGREE_BEST_SEED=3000
 
 OUT=${CONV_OUT:-$BUILD/convergence}  # results of this run (runs/ is emptied at the start)
 REFS=$BUILD/references
@@ -60,6 +61,11 @@ RUNS=$OUT/runs
 SCENE_DIR=$OUT/scenes
 export WHISKER_ASSETS=${WHISKER_ASSETS:-$(cd "$ROOT/.." && pwd)/shared/assets}
 
+# GNU time (Debian package "time") for the CPU-time column; without it the
+# column stays empty.
+no_timer() { shift; "$@"; }
+TIMER=(/usr/bin/time -f "%U %S" -o)
+[ -x /usr/bin/time ] || TIMER=(no_timer)
 REPORT_FLAGS=(--sampler independent --zero-cutoff off)
 BEST_FLAGS=()
 
@@ -125,8 +131,11 @@ EOF
 render() {  # scene_file spp seed pfm stats flags...
   local scene=$1 spp=$2 seed=$3 pfm=$4 stats=$5
   shift 5
-  "$WHISKER" --headless --quiet --scene "$scene" --frames 1 --spp "$spp" --seed "$seed" \
-    --threads "$THREADS" --out-float "$pfm" --stats "$stats" "$@" >/dev/null
+  # CPU time (user + system) beside the stats' wall-clock render time: on a
+  # shared machine it is the steadier measure of the work done.
+  "${TIMER[@]}" "$stats.cpu" "$WHISKER" --headless --quiet --scene "$scene" --frames 1 \
+    --spp "$spp" --seed "$seed" --threads "$THREADS" --out-float "$pfm" --stats "$stats" "$@" \
+    >/dev/null
 }
 
 pow2_list() {  # max -> 1 2 4 ... max
@@ -166,9 +175,18 @@ for name in $SCENES; do
     log "converged report-method image $name ${res}x$res at $AGREE_SPP spp"
     render "$scene" "$AGREE_SPP" "$AGREE_SEED" "$agree" "${agree%.pfm}.json" "${REPORT_FLAGS[@]}"
   fi
+  agree_best=$REFS/$name-${res}-best-$AGREE_SPP.pfm
+  if [ "$FORCE_REFS" = 1 ] || [ ! -f "$agree_best" ]; then
+    log "converged Whisker-best image $name ${res}x$res at $AGREE_SPP spp"
+    render "$scene" "$AGREE_SPP" "$AGREE_BEST_SEED" "$agree_best" "${agree_best%.pfm}.json" \
+      ${BEST_FLAGS[@]+"${BEST_FLAGS[@]}"}
+  fi
   "$COMPARE" "$agree" "$ref" --json "$RUNS/agree-$name.json" >/dev/null
+  "$COMPARE" "$agree_best" "$ref" --json "$RUNS/agree-best-$name.json" >/dev/null
+  "$COMPARE" "$agree" "$agree_best" --json "$RUNS/agree-pair-$name.json" >/dev/null
   cp "${ref%.pfm}.json" "$RUNS/ref-$name.stats.json"
   cp "${agree%.pfm}.json" "$RUNS/agree-$name.stats.json"
+  cp "${agree_best%.pfm}.json" "$RUNS/agree-best-$name.stats.json"
 done
 
 # --- 3. the study -----------------------------------------------------------

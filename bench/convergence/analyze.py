@@ -9,7 +9,9 @@ Reads OUT_DIR/runs/*.json (whisker --stats and whisker-compare --json files)
 and OUT_DIR/machine.json. Only the standard library: it runs wherever the
 build does.
 
-Interpolation is linear in log-log between the measured means (over seeds);
+Per spp count, MSE is the mean over seeds and time the median over seeds (a
+load spike from another process on the shared machine moves a mean, hardly a
+median). Interpolation is linear in log-log between these points;
 outside the measured range it extrapolates along a least-squares line through
 the three nearest points and says so ("extrap.").
 """
@@ -73,6 +75,21 @@ def x_at_y(xs, ys, y):
     return math.exp((t - a) / b), True
 
 
+def median(v):
+    v = sorted(v)
+    n = len(v)
+    return v[n // 2] if n % 2 else 0.5 * (v[n // 2 - 1] + v[n // 2])
+
+
+def cpu_of(stats_path):
+    """User + system CPU seconds (GNU time) of that render, or None."""
+    try:
+        u, s = open(stats_path + ".cpu").read().split()[-2:]
+        return float(u) + float(s)
+    except (OSError, ValueError):
+        return None
+
+
 def fmt(v, digits=3):
     if v is None:
         return "-"
@@ -113,7 +130,8 @@ def main():
             "aa": "on" if s["aa"] else "off", "indirect": "on" if s["indirect"] else "off",
             "fresnel": "on" if s["fresnel"] else "off", "max_depth": s["max_depth"],
             "width": st["width"], "height": st["height"], "threads": st["threads"],
-            "spp": spp, "seed": seed, "seconds": st["seconds"], "rays": st["rays"],
+            "spp": spp, "seed": seed, "seconds": st["seconds"], "cpu_seconds": cpu_of(path),
+            "rays": st["rays"],
             "mse": cmp["mse"], "rmse": cmp["rmse"], "rel_mse": cmp["rel_mse"],
             "mean_diff_z": cmp["mean_diff_z"], "load1": load1,
         })
@@ -127,12 +145,16 @@ def main():
     groups = defaultdict(list)
     for r in rows:
         groups[(r["scene"], r["method"], r["spp"])].append(r)
-    curves = defaultdict(lambda: {"spp": [], "t": [], "mse": [], "rel": []})
+    curves = defaultdict(lambda: {"spp": [], "t": [], "cpu": [], "mse": [], "rel": []})
     flags = {}
     for (scene, method, spp), rs in sorted(groups.items(), key=lambda kv: kv[0]):
         c = curves[(scene, method)]
         c["spp"].append(spp)
-        c["t"].append(sum(r["seconds"] for r in rs) / len(rs))
+        c["t"].append(median([r["seconds"] for r in rs]))
+        cpus = [r["cpu_seconds"] for r in rs if r["cpu_seconds"] is not None]
+        # CPU seconds / threads: the render time on an otherwise idle machine,
+        # if the threads scale perfectly (they share nothing but tiles).
+        c["cpu"].append(median(cpus) / rs[0]["threads"] if len(cpus) == len(rs) else None)
         c["mse"].append(sum(r["mse"] for r in rs) / len(rs))
         c["rel"].append(sum(r["rel_mse"] for r in rs) / len(rs))
         flags[(scene, method)] = f"--sampler {rs[0]['sampler']} --zero-cutoff {rs[0]['zero_cutoff']}"
@@ -162,7 +184,7 @@ def main():
         with open(os.path.join(out, f"{scene}.gp"), "w") as f:
             f.write(f"""set terminal pngcairo size 720,520 noenhanced font ',10'
 set output '{png}'
-set title "{scene}, {res_of[scene]}x{res_of[scene]}: MSE against render time (mean of {len(machine['seeds'].split())} seeds; 1..{max(curves[(scene, 'report')]['spp'])} spp)"
+set title "{scene}, {res_of[scene]}x{res_of[scene]}: MSE (mean of {len(machine['seeds'].split())} seeds) against render time (median); 1..{max(curves[(scene, 'report')]['spp'])} spp"
 set logscale xy
 set xlabel 'seconds (render time, --stats)'
 set ylabel 'MSE (radiance / 255^2.2, vs reference)'
@@ -186,11 +208,13 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
         p(f"Whole run: {run_info['wall_seconds']} s of wall time.")
     p()
     p("MSE, relMSE on radiance / 255^2.2 (1 = display white), mean over seeds, "
-      "against the reference; efficiency = 1 / (MSE x seconds); slope = least-squares "
+      "against the reference; seconds = render time from --stats, median over seeds; "
+      "CPU = (user + system CPU seconds) / threads, median over seeds; "
+      "efficiency = 1 / (MSE x seconds); slope = least-squares "
       "slope of log MSE against log seconds over all counts.")
     p()
-    p("| scene | method | flags | s per spp | spp | seconds | MSE | RMSE | relMSE | efficiency | slope |")
-    p("|---|---|---|---|---|---|---|---|---|---|---|")
+    p("| scene | method | flags | s per spp | CPU s per spp | spp | seconds | MSE | RMSE | relMSE | efficiency | slope |")
+    p("|---|---|---|---|---|---|---|---|---|---|---|---|")
     summary = {}
     for scene in scenes:
         common_max = min(max(curves[(scene, m)]["spp"]) for m in ("report", "best"))
@@ -198,50 +222,64 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
         for method in ("report", "best"):
             c = curves[(scene, method)]
             i = c["spp"].index(common_max)
-            t, e, rel = c["t"][i], c["mse"][i], c["rel"][i]
+            t, e, rel, cpu = c["t"][i], c["mse"][i], c["rel"][i], c["cpu"][i]
             a, b = fit([math.log(v) for v in c["t"]], [math.log(v) for v in c["mse"]])
             summary[(scene, method)] = (t, e, 1.0 / (e * t), common_max)
             p(f"| {scene} | {'report' if method == 'report' else 'Whisker best'} | `{flags[(scene, method)]}` | "
-              f"{fmt(t / common_max)} | {common_max} | {fmt(t)} | {fmt(e)} | {fmt(math.sqrt(e))} | {fmt(rel)} | "
+              f"{fmt(t / common_max)} | {fmt(cpu / common_max if cpu else None)} | {common_max} | {fmt(t)} | {fmt(e)} | {fmt(math.sqrt(e))} | {fmt(rel)} | "
               f"{fmt(1.0 / (e * t))} | {b:.2f} |")
     p()
     p("Equal-time error (at the time Whisker best takes for 256 spp), time to reach a stated "
-      "error (the report's method's MSE at 256 spp), and the efficiency ratio:")
+      "error (the report's method's MSE at 256 spp), and the efficiency ratio; the last column "
+      "is the same speed-up measured in CPU time:")
     p()
-    p("| scene | equal time (s) | MSE report | MSE best | error ratio | stated MSE | time report (s) | time best (s) | speed-up | efficiency ratio |")
-    p("|---|---|---|---|---|---|---|---|---|---|")
+    p("| scene | equal time (s) | MSE report | MSE best | error ratio | stated MSE | time report (s) | time best (s) | speed-up | efficiency ratio | speed-up (CPU time) |")
+    p("|---|---|---|---|---|---|---|---|---|---|---|")
     for scene in scenes:
         cr, cb = curves[(scene, "report")], curves[(scene, "best")]
         tb, eb, effb, _ = summary[(scene, "best")]
         tr, er, effr, _ = summary[(scene, "report")]
         er_at, ex1 = loglog_at(cr["t"], cr["mse"], tb)
         tb_reach, ex2 = x_at_y(cb["t"], cb["mse"], er)
+        cpu_speedup = "-"
+        if None not in cr["cpu"] and None not in cb["cpu"]:
+            i = cr["spp"].index(summary[(scene, "report")][3])
+            cb_reach, ex3 = x_at_y(cb["cpu"], cb["mse"], er)
+            cpu_speedup = mark(cr["cpu"][i] / cb_reach, ex3) + "x"
         p(f"| {scene} | {fmt(tb)} | {mark(er_at, ex1)} | {fmt(eb)} | {fmt(er_at / eb)} | {fmt(er)} | "
-          f"{fmt(tr)} | {mark(tb_reach, ex2)} | {fmt(tr / tb_reach)}x | {fmt(effb / effr)}x |")
+          f"{fmt(tr)} | {mark(tb_reach, ex2)} | {fmt(tr / tb_reach)}x | {fmt(effb / effr)}x | {cpu_speedup} |")
     p()
 
     # --- agreement of the converged images ----------------------------------
-    p(f"Converged images: the report's method at {machine['agree_spp']} spp against the reference "
-      f"(Whisker's Sobol sampler with the zero cut-off, {machine['ref_spp']} spp, other seeds). "
-      "Expected MSE if both are unbiased = the two images' own noise, "
-      "C_report / N_agree + C_best / N_ref, with C = n x MSE(n) from the study at 256 spp; "
-      "z = mean signed difference over its standard error. closed-sphere: against its exact image.")
+    p(f"Converged images: each method at {machine['agree_spp']} spp (seeds 2000 and 3000) against "
+      f"each other and against the reference (Whisker's Sobol sampler with the zero cut-off, "
+      f"{machine['ref_spp']} spp, seed 1000; closed-sphere: its exact image). If both are unbiased "
+      "the MSE between two images is their own noise, C_a / N_a + C_b / N_b with C = n x MSE(n) "
+      "from the study at 256 spp (for Sobol an overestimate if its error keeps falling faster "
+      "than 1/n); z = mean signed difference over its standard error.")
     p()
-    p("| scene | MSE observed | MSE expected from noise | ratio | mean difference (% of mean) | z |")
-    p("|---|---|---|---|---|---|")
+    p("| scene | images | MSE observed | MSE expected from noise | ratio | mean difference (% of mean) | z |")
+    p("|---|---|---|---|---|---|---|")
     for scene in scenes:
-        path = os.path.join(runs, f"agree-{scene}.json")
-        if not os.path.exists(path):
+        if (scene, "best") not in summary:
             continue
-        a = load(path)
-        tb, eb, _, n = summary[(scene, "best")]
-        tr, er, _, _ = summary[(scene, "report")]
+        _, eb, _, n = summary[(scene, "best")]
+        _, er, _, _ = summary[(scene, "report")]
         exact = scene == "closed-sphere"
         var_ref = 0.0 if exact else eb * n / machine["ref_spp"]
         c_rep = n * max(er - var_ref, 0.0)
-        expected = c_rep / machine["agree_spp"] + var_ref
-        p(f"| {scene} | {fmt(a['mse'])} | {fmt(expected)} | {fmt(a['mse'] / expected)} | "
-          f"{100 * a['mean_diff'] / a['mean_reference']:+.3f} % | {a['mean_diff_z']:+.2f} |")
+        c_best = n * max(eb - var_ref, 0.0)
+        na = machine["agree_spp"]
+        pairs = [("agree-pair", f"report {na} vs best {na}", c_rep / na + c_best / na),
+                 ("agree", f"report {na} vs reference", c_rep / na + var_ref),
+                 ("agree-best", f"best {na} vs reference", c_best / na + var_ref)]
+        for key, label, expected in pairs:
+            path = os.path.join(runs, f"{key}-{scene}.json")
+            if not os.path.exists(path):
+                continue
+            a = load(path)
+            p(f"| {scene} | {label} | {fmt(a['mse'])} | {fmt(expected)} | {fmt(a['mse'] / expected)} | "
+              f"{100 * a['mean_diff'] / a['mean_reference']:+.3f} % | {a['mean_diff_z']:+.2f} |")
     zs = [r["mean_diff_z"] for r in rows
           if r["scene"] == "closed-sphere" and r["method"] == "best" and r["spp"] >= 64]
     if zs:
@@ -277,6 +315,17 @@ plot '{dat}' index 0 using 2:3 with linespoints lw 2 pt 7 title "report's method
                          f"Whisker {fmt(spp_r)} s per spp (the report's program: ~1.1 s per spp), so "
                          f"Whisker best needs {fmt(spp_best)} x {fmt(spp_b)} = {fmt(t512)} s at 512x512, and the "
                          f"report's method in Whisker {fmt(1024 * spp_r)} s for its 1024 spp")
+            cb_cpu, cr_cpu = cpu_of(fr["best"]), cpu_of(fr["report"])
+            if cb_cpu and cr_cpu:
+                cpu_b = cb_cpu / sb["threads"] / sb["spp"]
+                cpu_r = cr_cpu / sr["threads"] / sr["spp"]
+                t512_idle = spp_best * cpu_b
+                lines[-1] += ";"
+                lines.append(f"- on an idle machine (CPU seconds / threads, the machine being shared): "
+                             f"best {fmt(cpu_b)} s per spp, report's method in Whisker {fmt(cpu_r)} s per spp, "
+                             f"so {fmt(t512_idle)} s for Whisker best, {fmt(1024 * cpu_r)} s for the report's "
+                             f"method's 1024 spp; {fmt(REPORT_PROGRAM_CAT_SECONDS / t512_idle)}x less than the "
+                             f"report's program even so")
         worst = max(v for v in (t_best * scale, t512) if v is not None)
         lines[-1] += "."
         speedup = REPORT_PROGRAM_CAT_SECONDS / worst
