@@ -154,11 +154,13 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
       ImGui::SameLine();
       ImGui::TextDisabled("(never stop)");
     }
-    int threads = s.threads;
+    // Applied on release: each change restarts the worker pool.
     const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
-    if (ImGui::SliderInt("threads", &threads, 1, std::max(hw, s.threads)) &&
-        threads != s.threads)
-      req.threads = threads;
+    if (s.threads_edit <= 0) s.threads_edit = s.threads;
+    ImGui::SliderInt("threads", &s.threads_edit, 1, std::max(hw, s.threads));
+    if (ImGui::IsItemDeactivatedAfterEdit() && s.threads_edit != s.threads)
+      req.threads = s.threads_edit;
+    if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
   }
 
   if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -35,6 +35,7 @@ struct ViewerState {
   bool message_is_error = false;
 
   int threads = 1;
+  int threads_edit = 0;  // the slider's value while it is dragged
   bool paused = false;
   std::uint64_t generation = 0;  // last generation asked for
   double last_change = 0.0;      // glfwGetTime() of the last edit
