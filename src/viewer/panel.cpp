@@ -29,7 +29,10 @@ static std::string human(double v) {
 static void stats(ViewerState& s, double now) {
   const Snapshot& sn = s.snap;
   const bool stale = sn.generation != s.generation;
-  const char* status = s.paused ? "paused" : sn.done ? "done (target reached)" : "rendering";
+  const char* status = s.paused           ? "paused"
+                       : sn.preview       ? "preview (1 sample per 4x4 block)"
+                       : sn.done          ? "done (target reached)"
+                                          : "rendering";
   ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, status);
   const double secs = sn.seconds > 0.0 ? sn.seconds : 0.0;
   ImGui::Text("%llu spp   %llu passes   %.2f passes/s%s", (unsigned long long)sn.spp,

@@ -121,7 +121,7 @@ struct Controller {
 
   void save() {
     const Snapshot& sn = s.snap;
-    if (sn.spp == 0) {
+    if (sn.spp == 0 || sn.preview) {
       s.message = "nothing to save yet";
       s.message_is_error = true;
       return;
@@ -336,6 +336,9 @@ int run_viewer(const ViewerOptions& opt) {
 
     ProgressiveRenderer renderer(opt.threads);
     s.threads = renderer.threads();
+    // A coarse preview (1/16 of a pass) shows an edit at once; it is never
+    // accumulated, so scripted runs and saves skip it.
+    renderer.set_preview(true);
     Controller ctl{renderer, s};
     s.generation = renderer.set_scene(s.applied);
     renderer.start();
@@ -366,12 +369,12 @@ int run_viewer(const ViewerOptions& opt) {
       const bool fresh = renderer.snapshot(s.snap);
       if (fresh) {
         display.upload(s.snap, s.display.mode == 1);
-        s.rse = s.snap.relative_standard_error();
+        s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();
         if (s.snap.generation != rse_generation) {
           s.rse_history.clear();
           rse_generation = s.snap.generation;
         }
-        if (std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
+        if (!s.snap.preview && std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
       }
       // Draw only when the screen can change: a new pass, input (and a few
       // frames after it for ImGui to settle), or the panel's clock.
@@ -380,7 +383,7 @@ int run_viewer(const ViewerOptions& opt) {
       last_frame = t0;
 
       // Scripted edits go through the same path as the panel's.
-      if (next_edit < opt.edits.size() && s.snap.generation == s.generation &&
+      if (next_edit < opt.edits.size() && s.snap.generation == s.generation && !s.snap.preview &&
           (s.snap.passes >= std::uint64_t(std::max(0, opt.edits[next_edit].after_pass)) ||
            s.snap.done)) {
         if (opt.edits[next_edit].light_position)
@@ -439,7 +442,7 @@ int run_viewer(const ViewerOptions& opt) {
       if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
 
       if (opt.frames > 0 && next_edit == opt.edits.size() &&
-          s.snap.generation == s.generation &&
+          s.snap.generation == s.generation && !s.snap.preview &&
           (s.snap.passes >= std::uint64_t(opt.frames) || s.snap.done))
         finish = true;
 
