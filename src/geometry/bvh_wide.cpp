@@ -216,18 +216,18 @@ inline unsigned tri_test(const RayAvx& r, const TriPacket& p, __m256 tmin, __m25
     const __m256 err = _mm256_fnmadd_ps(c, d, cd);
     return _mm256_add_ps(_mm256_fmsub_ps(a, b, cd), err);
   };
+  const __m256 zero = _mm256_setzero_ps();
   const __m256 e0 = dop(X[2], Y[1], Y[2], X[1]);
   e1 = dop(X[0], Y[2], Y[0], X[2]);
+  __m256 neg = _mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_LT_OQ), _mm256_cmp_ps(e1, zero, _CMP_LT_OQ));
+  __m256 pos = _mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_GT_OQ), _mm256_cmp_ps(e1, zero, _CMP_GT_OQ));
+  // The common case: two edges already disagree for all 8.
+  if (_mm256_movemask_ps(_mm256_and_ps(neg, pos)) == 0xff) return 0;
   e2 = dop(X[1], Y[0], Y[1], X[0]);
-  const __m256 zero = _mm256_setzero_ps();
-  const __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_LT_OQ),
-                                               _mm256_cmp_ps(e1, zero, _CMP_LT_OQ)),
-                                  _mm256_cmp_ps(e2, zero, _CMP_LT_OQ));
-  const __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_GT_OQ),
-                                               _mm256_cmp_ps(e1, zero, _CMP_GT_OQ)),
-                                  _mm256_cmp_ps(e2, zero, _CMP_GT_OQ));
+  neg = _mm256_or_ps(neg, _mm256_cmp_ps(e2, zero, _CMP_LT_OQ));
+  pos = _mm256_or_ps(pos, _mm256_cmp_ps(e2, zero, _CMP_GT_OQ));
   const unsigned mixed = static_cast<unsigned>(_mm256_movemask_ps(_mm256_and_ps(neg, pos)));
-  if (mixed == 0xffu) return 0;  // the common case: all 8 missed
+  if (mixed == 0xffu) return 0;
   const __m256 det = _mm256_add_ps(_mm256_add_ps(e0, e1), e2);
   const __m256 tt = _mm256_fmadd_ps(e2, Z[2], _mm256_fmadd_ps(e1, Z[1], _mm256_mul_ps(e0, Z[0])));
   inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);

@@ -33,9 +33,11 @@ struct WatertightRay {
       kx = ky;
       ky = t;
     }
-    sx = r.d[kx] / r.d[kz];
-    sy = r.d[ky] / r.d[kz];
+    // One division: any shear constants keep the test watertight so long
+    // as every triangle sees the same ones.
     sz = 1.0f / r.d[kz];
+    sx = r.d[kx] * sz;
+    sy = r.d[ky] * sz;
   }
 };
 
