@@ -61,7 +61,7 @@ TEST(Optics, ReflectionMirrorsTheNormalComponent) {
 TEST(Optics, SnellAtManyAngles) {
   // n1 sin(i) = n2 sin(t), with the refracted ray in the plane of d and n.
   const vec3 n(0, 0, 1);
-  for (const auto [n1, n2] : {std::pair{1.0f, 1.5f}, {1.5f, 1.0f}, {1.0f, 2.4f}}) {
+  for (const auto& [n1, n2] : {std::pair{1.0f, 1.5f}, {1.5f, 1.0f}, {1.0f, 2.4f}}) {
     for (int k = 0; k < 90; ++k) {
       const double i = k * kPi / 180.0;
       const vec3 d(float(std::sin(i)), 0.0f, float(-std::cos(i)));

@@ -5,6 +5,10 @@
 #include <chrono>
 #include <cmath>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include "geometry/world.h"
 #include "render/camera.h"
 #include "render/integrator.h"
@@ -158,6 +162,11 @@ bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
 }
 
 void ProgressiveRenderer::worker_main(int index) {
+  if (low_priority_) {
+    // On Linux a thread id names one thread for setpriority.
+    const auto tid = static_cast<id_t>(::syscall(SYS_gettid));
+    ::setpriority(PRIO_PROCESS, tid, ::getpriority(PRIO_PROCESS, tid) + 5);
+  }
   Job& job = *job_;
   for (;;) {
     if (index == 0) job.keep_going = begin_pass();
@@ -303,6 +312,8 @@ void ProgressiveRenderer::end_pass() {
     s.seconds = 0.0;
     s.done = false;
     s.preview = true;
+    s.triangles = job.world.triangle_count();
+    s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;
     publish_cv_.notify_all();
     return;
   }
@@ -330,6 +341,8 @@ void ProgressiveRenderer::end_pass() {
   s.seconds = job.seconds;
   s.done = target > 0 && job.spp_done >= std::uint64_t(target);
   s.preview = false;
+  s.triangles = job.world.triangle_count();
+  s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;
   publish_cv_.notify_all();
 }
 

@@ -33,6 +33,8 @@ struct Snapshot {
   // A coarse preview of a new generation (one sample per 4x4 block, spp = 1
   // for display): shown until the first real pass, never accumulated.
   bool preview = false;
+  std::size_t triangles = 0;  // the scene's geometry, for display
+  std::size_t bvh_nodes = 0;
 
   // Mean radiance of pixel (x, y), channel c.
   float mean(int x, int y, int c) const {
@@ -67,6 +69,10 @@ class ProgressiveRenderer {
   // Before the first full pass of every new generation, publish a coarse
   // preview (1/16 of a pass) so an edit shows at once. Off by default.
   void set_preview(bool on) { preview_enabled_ = on; }
+  // Run the workers at a lower scheduling priority (nice +5), so that an
+  // interactive UI thread on the same cores stays responsive. Takes effect
+  // at the next start().
+  void set_low_priority(bool on) { low_priority_ = on; }
   int threads() const { return threads_; }
 
   // Copies the latest published pass into `out` if its version differs from
@@ -93,6 +99,7 @@ class ProgressiveRenderer {
   std::atomic<bool> paused_{false};
   std::atomic<bool> running_{false};
   std::atomic<bool> preview_enabled_{false};
+  bool low_priority_ = false;
   // pending state, guarded by pending_mutex_
   mutable std::mutex pending_mutex_;
   std::condition_variable pending_cv_;

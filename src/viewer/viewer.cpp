@@ -18,7 +18,6 @@
 #include <imgui_impl_opengl3.h>
 
 #include "geometry/bvh.h"
-#include "geometry/world.h"
 #include "render/image_io.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
@@ -54,18 +53,6 @@ void on_glfw_error(int code, const char* text) {
 }
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
-
-// Triangle and BVH node counts for the panel. The renderer does not expose
-// its World, so build one here: once per loaded scene, milliseconds for the cat.
-void count_geometry(const Scene& scene, ViewerState& s) {
-  try {
-    const World world(scene);
-    s.triangles = world.triangle_count();
-    s.nodes = world.bvh() ? world.bvh()->node_count() : 0;
-  } catch (const std::exception&) {
-    s.triangles = s.nodes = 0;
-  }
-}
 
 std::string scene_label_of(const Scene& scene, const std::string& path) {
   if (!scene.name.empty()) return scene.name;
@@ -108,7 +95,6 @@ struct Controller {
       s.applied = scene;
       s.scene_label = scene_label_of(scene, path.string());
       s.path_field = path.string();
-      count_geometry(scene, s);
       s.generation = renderer.set_scene(scene);
       s.last_change = now;
       s.message = "loaded " + path.string();
@@ -319,7 +305,6 @@ int run_viewer(const ViewerOptions& opt) {
     s.initial = s.applied = s.edited = opt.scene;
     s.scene_label = scene_label_of(opt.scene, opt.scene_path);
     s.path_field = opt.scene_path;
-    count_geometry(opt.scene, s);
     try {
       s.scene_names = list_scenes();
     } catch (const std::exception& e) {
@@ -339,6 +324,7 @@ int run_viewer(const ViewerOptions& opt) {
     // A coarse preview (1/16 of a pass) shows an edit at once; it is never
     // accumulated, so scripted runs and saves skip it.
     renderer.set_preview(true);
+    renderer.set_low_priority(true);  // the UI thread shares the two cores
     Controller ctl{renderer, s};
     s.generation = renderer.set_scene(s.applied);
     renderer.start();
@@ -368,6 +354,8 @@ int run_viewer(const ViewerOptions& opt) {
 
       const bool fresh = renderer.snapshot(s.snap);
       if (fresh) {
+        s.triangles = s.snap.triangles;
+        s.nodes = s.snap.bvh_nodes;
         display.upload(s.snap, s.display.mode == 1);
         s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();
         if (s.snap.generation != rse_generation) {
