@@ -127,7 +127,7 @@ TEST(Sphere, SpawnedRaysNeverReHitTheirSurface) {
       const float t = intersect_sphere(s, primary);
       if (t == kInf) continue;
       ++tested;
-      const vec3 p = sphere_hit_point(s, primary, refine_sphere_t(s, primary, t));
+      const vec3 p = sphere_hit_point(primary, refine_sphere_t(s, primary, t));
       const vec3 ng = sphere_normal(s, p);
       const vec3 d = uniform_direction(g);
       const Ray spawned = spawn_ray(p, ng, d);
@@ -163,10 +163,12 @@ TEST(Sphere, HitPointIsOnTheSurface) {
                                                     std::uniform_real_distribution<float>(-1, 1)(g)))};
     const float t = intersect_sphere(wall, r);
     ASSERT_NE(t, kInf);
-    const vec3 p = sphere_hit_point(wall, r, refine_sphere_t(wall, r, t));
+    const vec3 p = sphere_hit_point(r, refine_sphere_t(wall, r, t));
     const long double dx = p.x, dy = (long double)p.y + 1000.0L, dz = p.z;
     const long double dist = std::sqrt(dx * dx + dy * dy + dz * dz) - 990.0L;
     EXPECT_LT(std::fabs(dist), 8 * 6.2e-5L);  // 8 ULPs of 990
+    // The normal is (p - c)/r, unit to float precision without normalising.
+    EXPECT_NEAR(glm::length(sphere_normal(wall, p)), 1.0f, 1e-6f);
   }
 }
 

@@ -78,7 +78,7 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
     const Sphere& s = spheres_[hit.prim];
     const double t = refine_sphere_t(s, ray, hit.t);
     out.t = float(t);
-    out.p = sphere_hit_point(s, ray, t);
+    out.p = sphere_hit_point(ray, t);
     out.ng = sphere_normal(s, out.p);
     out.ns = out.ng;
     out.material = &sphere_material_[hit.prim];
