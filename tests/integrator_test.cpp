@@ -11,23 +11,13 @@
 #include "render/integrator.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
+#include "render_util.h"
 
 using namespace whisker;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-Snapshot render(const Scene& scene, int threads = 0) {
-  ProgressiveRenderer r(threads);
-  const auto gen = r.set_scene(scene);
-  r.start();
-  EXPECT_TRUE(r.wait_for(gen, std::uint64_t(scene.settings.target_spp)));
-  Snapshot s;
-  r.snapshot(s);
-  r.stop();
-  return s;
-}
 
 // A closed diffuse sphere of radius R and grey albedo rho, the camera inside
 // looking at the far wall.

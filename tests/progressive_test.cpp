@@ -7,6 +7,7 @@
 
 #include "render/progressive.h"
 #include "scene/scene_io.h"
+#include "render_util.h"
 
 using namespace whisker;
 
@@ -21,17 +22,6 @@ Scene small_scene(int spp_per_pass, int target) {
   s.settings.spp = spp_per_pass;
   s.settings.target_spp = target;
   s.settings.seed = 42;
-  return s;
-}
-
-Snapshot render(const Scene& scene, int threads) {
-  ProgressiveRenderer r(threads);
-  const auto gen = r.set_scene(scene);
-  r.start();
-  EXPECT_TRUE(r.wait_for(gen, std::uint64_t(scene.settings.target_spp)));
-  Snapshot s;
-  r.snapshot(s);
-  r.stop();
   return s;
 }
 
