@@ -90,6 +90,19 @@ TEST_F(MeshIo, TriangulatesPolygonsAndResolvesNegativeIndices) {
   EXPECT_EQ(m.triangles[2], glm::uvec3(4, 1, 2));
 }
 
+TEST_F(MeshIo, AcceptsCrlfTabsGroupsAndUtf8Comments) {
+  const std::string p = write("win.obj",
+                              "# caf\xc3\xa9 \xe2\x80\x94 exported on Windows\r\n"
+                              "mtllib missing.mtl\r\no obj\r\ng grp\r\ns 1\r\n"
+                              "v\t0 0 0\r\nv 1 0 0 # trailing comment\r\nv 0 1 0\r\n"
+                              "usemtl red\r\nf 1 2 3\r\n");
+  const TriangleMesh m = load_obj(p, 1.0f, vec3(0.0f));
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.positions[1], vec3(1, 0, 0));
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_EQ(m.warnings[0], p + ": material library 'missing.mtl' not found; materials ignored");
+}
+
 TEST_F(MeshIo, KeepsVertexNormalsWhenEveryFaceHasThem) {
   const std::string p = write("n.obj",
                               "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\n"
