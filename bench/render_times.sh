@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 runs=${1:-3}
-bin=build/whisker
+bin=${WHISKER_BUILD:-build}/whisker
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
