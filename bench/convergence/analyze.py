@@ -45,6 +45,8 @@ def fit(xs, ys):
 def loglog_at(xs, ys, x):
     """y at x on the log-log polyline through (xs, ys) (xs increasing).
     Returns (y, extrapolated)."""
+    # CPU times of the shortest renders can read 0 (clock granularity).
+    xs, ys = zip(*[(a, b) for a, b in zip(xs, ys) if a > 0 and b > 0])
     lx = [math.log(v) for v in xs]
     ly = [math.log(v) for v in ys]
     t = math.log(x)
@@ -61,6 +63,7 @@ def loglog_at(xs, ys, x):
 def x_at_y(xs, ys, y):
     """The x where the log-log polyline reaches y, ys decreasing in xs.
     Returns (x, extrapolated)."""
+    xs, ys = zip(*[(a, b) for a, b in zip(xs, ys) if a > 0 and b > 0])
     lx = [math.log(v) for v in xs]
     ly = [math.log(v) for v in ys]
     t = math.log(y)
