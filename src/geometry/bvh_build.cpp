@@ -24,6 +24,12 @@ struct Builder {
   std::vector<vec3> cents;
   BinaryBvh out;
 
+  Builder(std::vector<Box3> bx, std::vector<vec3> cs) : boxes(std::move(bx)), cents(std::move(cs)) {
+    out.prims.resize(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i) out.prims[i] = static_cast<std::uint32_t>(i);
+    out.nodes.reserve(2 * boxes.size() + 1);
+  }
+
   explicit Builder(const std::vector<Triangle>& tris) {
     boxes.reserve(tris.size());
     cents.reserve(tris.size());
@@ -177,6 +183,14 @@ struct Builder {
 BinaryBvh build_binary_sah(const std::vector<Triangle>& tris, std::uint32_t max_leaf) {
   Builder b(tris);
   if (!tris.empty()) b.sah(0, static_cast<std::uint32_t>(tris.size()), 0, max_leaf);
+  return std::move(b.out);
+}
+
+BinaryBvh build_binary_sah(std::vector<Box3> boxes, std::vector<vec3> centroids,
+                           std::uint32_t max_leaf) {
+  const auto n = static_cast<std::uint32_t>(boxes.size());
+  Builder b(std::move(boxes), std::move(centroids));
+  if (n > 0) b.sah(0, n, 0, max_leaf);
   return std::move(b.out);
 }
 

@@ -27,6 +27,10 @@ struct BinaryBvh {
 // Hierarchies", IRT 2007): 32 centroid bins per axis, the cheapest plane of
 // the three axes, a leaf when that is cheaper than any split.
 BinaryBvh build_binary_sah(const std::vector<Triangle>& tris, std::uint32_t max_leaf);
+// The same over arbitrary primitives given by their boxes and centroids (the
+// objects of a scene: spheres and meshes).
+BinaryBvh build_binary_sah(std::vector<Box3> boxes, std::vector<vec3> centroids,
+                           std::uint32_t max_leaf);
 
 // The report's builder (its section on BVH, after the lecture notes): split
 // the node's box at the middle of its longest axis, triangles going left or

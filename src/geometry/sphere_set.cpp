@@ -6,7 +6,10 @@
 
 namespace whisker {
 
-SphereSet::SphereSet(const std::vector<Sphere>& spheres) : count_(spheres.size()) {
+SphereSet::SphereSet(const std::vector<Sphere>& spheres, std::vector<std::uint32_t> ids)
+    : count_(spheres.size()), id_(std::move(ids)) {
+  if (id_.empty())
+    for (std::size_t k = 0; k < count_; ++k) id_.push_back(std::uint32_t(k));
   const std::size_t padded = (count_ + 7) / 8 * 8;
   // Padding lanes: radius^2 = -1 makes the discriminant negative for any ray.
   cx_.assign(padded, 0.0f);
@@ -74,7 +77,7 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
       mask &= mask - 1;
       if (ts[lane] < best) {
         best = ts[lane];
-        index = std::uint32_t(k + lane);
+        index = id_[k + lane];
         found = true;
       }
     }

@@ -13,7 +13,8 @@ namespace whisker {
 class SphereSet {
  public:
   SphereSet() = default;
-  explicit SphereSet(const std::vector<Sphere>& spheres);
+  // ids[k] is what intersect() reports for spheres[k] (default: k).
+  explicit SphereSet(const std::vector<Sphere>& spheres, std::vector<std::uint32_t> ids = {});
 
   // Closest hit with t in (ray.tmin, tmax): writes t and the sphere index,
   // returns false if none. Same arithmetic as intersect_sphere().
@@ -25,6 +26,7 @@ class SphereSet {
   std::size_t count_ = 0;
   // Structure of arrays, padded to a multiple of 8 with spheres nothing hits.
   std::vector<float> cx_, cy_, cz_, r2_;
+  std::vector<std::uint32_t> id_;
 };
 
 }  // namespace whisker

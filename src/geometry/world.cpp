@@ -23,17 +23,20 @@ World::World(const Scene& scene, const World* reuse) {
       sphere_material_.push_back(s.material);
     }
   }
-  sphere_set_ = SphereSet(spheres_);
   std::vector<const TriangleMesh*> sources;
   for (const auto& m : scene.meshes) {
     mesh_material_.push_back(m.material);
     mesh_vertex_normals_.push_back(m.vertex_normals);
     sources.push_back(m.mesh.get());
   }
-  if (sources.empty()) return;
+  if (sources.empty()) {
+    objects_ = ObjectBvh(spheres_, Box3{});
+    return;
+  }
   if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
       reuse->mesh_->accel == scene.settings.accel) {
     mesh_ = reuse->mesh_;
+    objects_ = ObjectBvh(spheres_, mesh_->bounds);
     return;
   }
   auto data = std::make_shared<MeshData>();
@@ -48,6 +51,7 @@ World::World(const Scene& scene, const World* reuse) {
       const glm::uvec3 idx = mesh.triangles[t];
       const Triangle tri{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
       tris.push_back(tri);
+      data->bounds.grow(bounds_of(tri));
       data->object.push_back(mi);
       const vec3 n = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
       data->ng.push_back(n);
@@ -64,14 +68,13 @@ World::World(const Scene& scene, const World* reuse) {
   }
   data->bvh = Bvh::build(std::move(tris), scene.settings.accel);
   mesh_ = std::move(data);
+  objects_ = ObjectBvh(spheres_, mesh_->bounds);
 }
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {
   Hit hit;
   hit.t = ray.tmax;
-  // The mesh first: a cat hit shortens the sphere test's interval.
-  if (mesh_) mesh_->bvh.intersect(ray, hit);
-  if (sphere_set_.intersect(ray, hit.t, hit.t, hit.prim)) hit.kind = PrimKind::Sphere;
+  objects_.intersect(ray, hit, mesh_ ? &mesh_->bvh : nullptr);
   if (!hit.valid()) return false;
   out.t = hit.t;
   if (hit.kind == PrimKind::Sphere) {
@@ -100,7 +103,7 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
 }
 
 bool World::occluded(const Ray& ray) const {
-  return sphere_set_.occluded(ray) || (mesh_ && mesh_->bvh.occluded(ray));
+  return objects_.occluded(ray, mesh_ ? &mesh_->bvh : nullptr);
 }
 
 }  // namespace whisker

@@ -1,5 +1,6 @@
 // Everything a ray can hit in one scene: the spheres and the triangles of all
-// meshes (in one BVH), with each primitive's material.
+// meshes (in one BVH), under one object-level BVH, with each primitive's
+// material.
 #pragma once
 
 #include <array>
@@ -10,7 +11,7 @@
 #include "geometry/bvh.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
-#include "geometry/sphere_set.h"
+#include "geometry/object_bvh.h"
 #include "scene/scene.h"
 
 namespace whisker {
@@ -34,6 +35,7 @@ class World {
   bool occluded(const Ray& ray) const;
 
   std::size_t sphere_count() const { return spheres_.size(); }
+  std::size_t object_node_count() const { return objects_.node_count(); }
   std::size_t triangle_count() const { return mesh_ ? mesh_->bvh.triangle_count() : 0; }
   const Bvh* bvh() const { return mesh_ ? &mesh_->bvh : nullptr; }
 
@@ -46,9 +48,10 @@ class World {
     std::vector<std::array<vec3, 3>> ns;  // per triangle corner normals (if any mesh uses them)
     std::vector<const TriangleMesh*> sources;  // identity of the meshes it was built from
     AccelKind accel = AccelKind::Sah;
+    Box3 bounds;  // of all triangles
   };
   std::vector<Sphere> spheres_;
-  SphereSet sphere_set_;  // the same spheres, for 8-wide tests
+  ObjectBvh objects_;  // spheres and the mesh, one structure
   std::vector<Material> sphere_material_;
   std::vector<Material> mesh_material_;
   std::vector<bool> mesh_vertex_normals_;

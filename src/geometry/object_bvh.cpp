@@ -1,0 +1,150 @@
+#include "geometry/object_bvh.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "geometry/bvh_build.h"
+
+namespace whisker {
+
+namespace {
+
+// Slab test (Kay and Kajiya): the entry distance, or kInf on a miss. The
+// exit is widened by 2 gamma_3 so rounding never culls a box the ray grazes
+// (Ize, "Robust BVH Ray Traversal", JCGT 2013).
+float enter(const Box3& b, const Ray& r, const vec3& inv) {
+  float t0 = r.tmin, t1 = r.tmax;
+  for (int a = 0; a < 3; ++a) {
+    float tn = (b.lo[a] - r.o[a]) * inv[a];
+    float tf = (b.hi[a] - r.o[a]) * inv[a];
+    if (tn > tf) std::swap(tn, tf);
+    tf *= 1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f);
+    t0 = tn > t0 ? tn : t0;  // NaN (0 * inf) leaves the bound as it was
+    t1 = tf < t1 ? tf : t1;
+    if (t0 > t1) return kInf;
+  }
+  return t0;
+}
+
+}  // namespace
+
+ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
+  // Objects 0..n-1 are the spheres, object n the mesh (if any).
+  std::vector<Box3> boxes;
+  std::vector<vec3> cents;
+  for (const Sphere& s : spheres) {
+    boxes.push_back(Box3{s.center - vec3(s.radius), s.center + vec3(s.radius)});
+    cents.push_back(s.center);
+  }
+  const auto mesh_id = static_cast<std::uint32_t>(spheres.size());
+  if (!mesh_box.empty()) {
+    boxes.push_back(mesh_box);
+    cents.push_back(0.5f * (mesh_box.lo + mesh_box.hi));
+  }
+  if (boxes.empty()) return;
+  // Up to 16 objects per leaf (two 8-wide sphere blocks): the report's
+  // scenes, 7 to 10 objects, are then a single leaf.
+  const BinaryBvh bin = build_binary_sah(boxes, cents, 16);
+  nodes_.reserve(bin.nodes.size());
+  for (const BinaryNode& b : bin.nodes) {
+    Node n;
+    n.box = b.box;
+    n.left = b.left;
+    n.right = b.right;
+    if (b.leaf()) {
+      Leaf leaf;
+      std::vector<Sphere> ss;
+      std::vector<std::uint32_t> ids;
+      for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
+        const std::uint32_t obj = bin.prims[k];
+        if (obj == mesh_id) {
+          leaf.mesh = true;
+        } else {
+          ss.push_back(spheres[obj]);
+          ids.push_back(obj);
+        }
+      }
+      leaf.spheres = SphereSet(ss, std::move(ids));
+      n.leaf = static_cast<std::uint32_t>(leaves_.size());
+      leaves_.push_back(std::move(leaf));
+    }
+    nodes_.push_back(n);
+  }
+}
+
+bool ObjectBvh::intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const Bvh* mesh) {
+  bool found = false;
+  float t;
+  std::uint32_t id;
+  if (leaf.spheres.size() && leaf.spheres.intersect(ray, std::min(ray.tmax, hit.t), t, id)) {
+    hit.t = t;
+    hit.kind = PrimKind::Sphere;
+    hit.prim = id;
+    found = true;
+  }
+  if (leaf.mesh && mesh) found |= mesh->intersect(ray, hit);
+  return found;
+}
+
+bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
+  if (nodes_.empty()) return false;
+  // A single leaf (every scene of the report): its exact tests are all the
+  // culling there is; a box test in front would only cost.
+  if (nodes_.size() == 1) return intersect_leaf(leaves_[0], ray, hit, mesh);
+  const vec3 inv(1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z);
+  bool found = false;
+  struct Entry {
+    std::uint32_t node;
+    float t;  // where the ray enters the node's box
+  };
+  Entry stack[128];  // trivial, so not zeroed per ray; builder depth is at most 72
+  int top = 0;
+  const float t_root = enter(nodes_[0].box, ray, inv);
+  if (t_root == kInf) return false;
+  stack[top++] = {0u, t_root};
+  while (top > 0) {
+    const auto [index, t_enter] = stack[--top];
+    if (t_enter >= hit.t) continue;  // a closer hit was found since it was pushed
+    const Node& n = nodes_[index];
+    if (n.leaf != kInner) {
+      found |= intersect_leaf(leaves_[n.leaf], ray, hit, mesh);
+      continue;
+    }
+    // Nearer child on top of the stack, so it is opened first.
+    const float tl = enter(nodes_[n.left].box, ray, inv);
+    const float tr = enter(nodes_[n.right].box, ray, inv);
+    const bool left_first = tl <= tr;
+    const Entry a{left_first ? n.left : n.right, left_first ? tl : tr};
+    const Entry b{left_first ? n.right : n.left, left_first ? tr : tl};
+    if (b.t < hit.t) stack[top++] = b;
+    if (a.t < hit.t) stack[top++] = a;
+  }
+  return found;
+}
+
+bool ObjectBvh::occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh) {
+  return (leaf.spheres.size() && leaf.spheres.occluded(ray)) ||
+         (leaf.mesh && mesh && mesh->occluded(ray));
+}
+
+bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh) const {
+  if (nodes_.empty()) return false;
+  if (nodes_.size() == 1) return occluded_leaf(leaves_[0], ray, mesh);
+  const vec3 inv(1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z);
+  std::uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[stack[--top]];
+    if (enter(n.box, ray, inv) == kInf) continue;
+    if (n.leaf != kInner) {
+      if (occluded_leaf(leaves_[n.leaf], ray, mesh)) return true;
+      continue;
+    }
+    stack[top++] = n.left;
+    stack[top++] = n.right;
+  }
+  return false;
+}
+
+}  // namespace whisker
