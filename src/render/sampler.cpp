@@ -16,23 +16,40 @@ std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
   return std::uint32_t(mix64((std::uint64_t(a) << 32) | b));
 }
 
-// Sobol's second dimension: generator columns v_k for the primitive
-// polynomial x + 1 (m_1 = 1), v_1 = 2^31, v_k = v_{k-1} ^ (v_{k-1} >> 1),
-// folded into one table per index byte: four lookups instead of a 32-step
-// loop (shuffled indices use all 32 bits).
-struct SobolDim1 {
+// A Sobol dimension's generator matrix from its primitive polynomial (degree
+// deg, inner coefficients a) and initial direction numbers m_1..m_deg:
+// v_k = m_k 2^(32-k) for k <= deg, then Bratley and Fox's recurrence
+// v_k = a_1 v_(k-1) ^ ... ^ a_(deg-1) v_(k-deg+1) ^ v_(k-deg) ^ (v_(k-deg) >> deg).
+// Direction numbers from Joe and Kuo, "Constructing Sobol sequences with
+// better two-dimensional projections", SIAM J. Sci. Comput. 2008 (their
+// dimensions 2 to 4). Folded into one table per index byte: four lookups
+// instead of a 32-step loop (shuffled indices use all 32 bits).
+struct SobolMatrix {
   std::uint32_t byte[4][256];
-  constexpr SobolDim1() : byte() {
+  constexpr SobolMatrix(int deg, std::uint32_t a, const std::uint32_t (&m)[3]) : byte() {
     std::uint32_t v[32] = {};
-    v[0] = 0x80000000u;
-    for (int k = 1; k < 32; ++k) v[k] = v[k - 1] ^ (v[k - 1] >> 1);
+    for (int k = 0; k < 32; ++k) {
+      if (k < deg) {
+        v[k] = m[k] << (31 - k);
+        continue;
+      }
+      v[k] = v[k - deg] ^ (v[k - deg] >> deg);
+      for (int j = 1; j < deg; ++j)
+        if (a >> (deg - 1 - j) & 1u) v[k] ^= v[k - j];
+    }
     for (int b = 0; b < 4; ++b)
       for (int x = 0; x < 256; ++x)
         for (int k = 0; k < 8; ++k)
           if (x >> k & 1) byte[b][x] ^= v[8 * b + k];
   }
+  constexpr std::uint32_t operator()(std::uint32_t i) const {
+    return byte[0][i & 255] ^ byte[1][i >> 8 & 255] ^ byte[2][i >> 16 & 255] ^ byte[3][i >> 24];
+  }
 };
-constexpr SobolDim1 kDim1;
+constexpr std::uint32_t kM1[3] = {1, 0, 0}, kM2[3] = {1, 3, 0}, kM3[3] = {1, 3, 1};
+constexpr SobolMatrix kDim1(1, 0, kM1);  // x + 1
+constexpr SobolMatrix kDim2(2, 1, kM2);  // x^2 + x + 1
+constexpr SobolMatrix kDim3(3, 1, kM3);  // x^3 + x + 1
 
 // Laine-Karras style hash that permutes bits only towards higher ones,
 // with Burley's constants (JCGT 2020, listing 2): applied to reversed bits it
@@ -52,12 +69,30 @@ std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
   return reverse_bits(laine_karras(reverse_bits(v), seed));
 }
 
-std::uint32_t sobol_dim1(std::uint32_t index) {
-  return kDim1.byte[0][index & 255] ^ kDim1.byte[1][index >> 8 & 255] ^
-         kDim1.byte[2][index >> 16 & 255] ^ kDim1.byte[3][index >> 24];
-}
+std::uint32_t sobol_dim1(std::uint32_t index) { return kDim1(index); }
+std::uint32_t sobol_dim2(std::uint32_t index) { return kDim2(index); }
+std::uint32_t sobol_dim3(std::uint32_t index) { return kDim3(index); }
 
 void Sampler::sobol2d(float& u, float& v) {
+  if (dim_ < 2) {
+    // The first four dimensions (pixel jitter and the first bounce, or the
+    // first Fresnel choice) are one 4D Sobol point: the index is shuffled
+    // once per pixel, so the four stay jointly stratified; each coordinate
+    // is Owen-scrambled with its own seed.
+    const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, key_));
+    std::uint32_t x, y;
+    if (dim_ == 0) {
+      x = reverse_bits(laine_karras(i, hash32(key_, 0xd0)));
+      y = owen_scramble(kDim1(i), hash32(key_, 0xd1));
+    } else {
+      x = owen_scramble(kDim2(i), hash32(key_, 0xd2));
+      y = owen_scramble(kDim3(i), hash32(key_, 0xd3));
+    }
+    ++dim_;
+    u = float(x >> 8) * 0x1p-24f;
+    v = float(y >> 8) * 0x1p-24f;
+    return;
+  }
   const std::uint32_t pair_key = hash32(key_, dim_++);
   // Shuffle the order of the points (Burley section 4): i = owen(index)...
   const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, pair_key));

@@ -34,13 +34,17 @@ class Rng {
   std::uint64_t state_;
 };
 
-// The 2D Sobol (0,2)-sequence, Owen-scrambled per pixel and dimension pair,
-// with the sample order shuffled per pair so that pairs are decorrelated
-// (Burley, "Practical Hash-based Owen Scrambling", JCGT 2020, sections 3-5).
-// Each 2D request takes the next dimension pair; a 1D request takes a pair's
-// first coordinate.
+// Owen-scrambled Sobol points (Burley, "Practical Hash-based Owen
+// Scrambling", JCGT 2020). The first two 2D requests (pixel jitter and the
+// first bounce) are the four dimensions of one Sobol point, stratified
+// jointly; later requests take padded pairs, the 2D (0,2)-sequence with the
+// sample order shuffled per pair (Burley section 4). Every coordinate is
+// scrambled with its own per-pixel seed. A 1D request takes a pair's first
+// coordinate.
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
 std::uint32_t sobol_dim1(std::uint32_t index);
+std::uint32_t sobol_dim2(std::uint32_t index);
+std::uint32_t sobol_dim3(std::uint32_t index);
 
 // What the estimator draws its numbers from: independent uniforms (the
 // report's method) or the scrambled Sobol points.
