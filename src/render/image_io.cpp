@@ -51,8 +51,11 @@ void write_atomically(const std::string& path, const std::function<bool(const st
   if (!fs::is_directory(dir, ec))
     throw ImageError(path + ": cannot write: folder " + dir.string() + " does not exist");
   if (fs::is_directory(target, ec)) throw ImageError(path + ": cannot write: is a directory");
-  const std::string tmp = (dir / ("." + target.filename().string() + ".tmp-" +
-                                  std::to_string(::getpid()))).string();
+  // ".name.tmp-PID" beside the target, so the rename stays on one file system.
+  std::string tmp_name = target.filename().string();
+  tmp_name.insert(tmp_name.begin(), '.');
+  tmp_name += ".tmp-" + std::to_string(::getpid());
+  const std::string tmp = (dir / tmp_name).string();
   if (!writer(tmp)) {
     const std::string why = errno ? std::strerror(errno) : "write failed";
     fs::remove(tmp, ec);

@@ -235,10 +235,7 @@ void ProgressiveRenderer::run_tiles() {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
-    {
-      std::lock_guard lock(pending_mutex_);
-      if (quit_ || pending_generation_ != job.generation) job.aborted = true;
-    }
+    if (quit_ || pending_generation_ != job.generation) job.aborted = true;
     if (job.aborted) break;
     const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;

@@ -62,7 +62,7 @@ class ProgressiveRenderer {
   std::uint64_t set_settings(const RenderSettings& settings);
 
   void start();                 // launch the workers
-  void stop();                  // join them (finishes the current pass)
+  void stop();                  // join them (a running pass is abandoned)
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
   void set_threads(int threads);  // restarts the pool if running
@@ -104,8 +104,10 @@ class ProgressiveRenderer {
   mutable std::mutex pending_mutex_;
   std::condition_variable pending_cv_;
   Scene pending_scene_;
-  std::uint64_t pending_generation_ = 0;
-  bool quit_ = false;
+  // Written under pending_mutex_; atomic so that workers can check them
+  // between tiles without taking the lock.
+  std::atomic<std::uint64_t> pending_generation_{0};
+  std::atomic<bool> quit_{false};
   // published snapshot, guarded by publish_mutex_
   mutable std::mutex publish_mutex_;
   std::condition_variable publish_cv_;
