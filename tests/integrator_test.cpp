@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/mesh.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
@@ -261,4 +262,46 @@ TEST(Accumulation, InfiniteSamplesAreDroppedAndCounted) {
   EXPECT_EQ(s.nan_count, 4u);
   EXPECT_EQ(s.sum[0], 0.0f);
   EXPECT_TRUE(std::isfinite(s.sum[0]));
+}
+
+namespace {
+
+// One triangle in the plane z = 0 facing +z, seen straight down from
+// (0, 0, 10) by a one-pixel camera, every corner's normal `n`.
+Scene tilted_normal_triangle(vec3 n, vec3 light, bool vertex_normals) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->positions = {vec3(-5, -5, 0), vec3(5, -5, 0), vec3(0, 5, 0)};
+  mesh->triangles = {glm::uvec3(0, 1, 2)};
+  mesh->normals = {glm::normalize(n)};
+  mesh->normal_idx = {glm::uvec3(0, 0, 0)};
+  Scene s;
+  MeshObject m;
+  m.vertex_normals = vertex_normals;
+  m.mesh = mesh;
+  s.meshes.push_back(m);
+  s.light = {light, 1000.0f};
+  s.camera.position = vec3(0, 0, 10);
+  s.camera.look_at = vec3(0, 0, 0);
+  s.camera.width = s.camera.height = 1;
+  s.settings.spp = s.settings.target_spp = 1;
+  return s;
+}
+
+}  // namespace
+
+// The file's vertex normals shade (cos from the interpolated normal), and
+// never light a point whose geometric side faces away from the light.
+TEST(DirectLight, VertexNormalsShadeButNeverLeakThroughTheTerminator) {
+  const double I = 1000.0;
+  // Light above at (3, 0, 4), distance 5 from the hit point (0, 0, 0).
+  const vec3 n(1, 0, 1);
+  const double cos_smooth = (0.6 + 0.8) / std::sqrt(2.0), cos_flat = 0.8;
+  const Snapshot flat = render(tilted_normal_triangle(n, vec3(3, 0, 4), false));
+  const Snapshot smooth = render(tilted_normal_triangle(n, vec3(3, 0, 4), true));
+  EXPECT_NEAR(flat.mean(0, 0, 0), I * cos_flat / (4 * kPi * kPi * 25), 1e-5);
+  EXPECT_NEAR(smooth.mean(0, 0, 0), I * cos_smooth / (4 * kPi * kPi * 25), 1e-5);
+  // Light just below the plane: the tilted shading normal (1, 0, 0.1) still
+  // faces it (cos 0.94), the geometry does not: no light at all.
+  const Snapshot leak = render(tilted_normal_triangle(vec3(1, 0, 0.1f), vec3(4, 0, -1), true));
+  EXPECT_EQ(leak.mean(0, 0, 0), 0.0f);
 }
