@@ -136,6 +136,7 @@ TEST(Headless, BadInputExitsTwoWithAMessage) {
       {"--headless --scene three-balls --light 1,2" + out, "--light 1,2: expected three finite numbers"},
       {"--headless --scene three-balls --indirect maybe" + out, "--indirect"},
       {"--headless --scene three-balls --spp 0" + out, "--spp"},
+      {"--headless --scene three-balls --spp 65536 --frames 65536" + out, "more than 2^30 samples per pixel"},
       {"--headless --scene three-balls", "needs at least one of --out"},
   };
   for (const Case& c : cases) {

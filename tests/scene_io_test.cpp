@@ -94,6 +94,7 @@ TEST(SceneFiles, BadFieldsAreNamed) {
       {R"({"light": {"intensity": 1e999}})", "bad.json: invalid JSON: number overflow parsing '1e999'"},
       {R"({"camera": {"up": [0, 0, 0]}})", "bad.json: camera.up: must not be zero-length"},
       {R"({"camera": {"width": 0}})", "bad.json: camera.width: must be in [1, 16384]"},
+      {R"({"camera": {"width": 16384, "height": 8192}})", "bad.json: camera.width: 16384 x 8192 pixels is more than 4096 x 4096"},
       {R"({"camera": {"width": 1.5}})", "bad.json: camera.width: must be an integer"},
       {R"({"camera": {"look_at": [0, 0, 55]}})", "bad.json: camera.look_at: must differ"},
       {R"({"settings": {"indirect": "yes"}})", "bad.json: settings.indirect: must be true or false"},

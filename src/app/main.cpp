@@ -142,6 +142,10 @@ int main(int argc, char** argv) {
     scene.light.position = *v;
   }
   if (intensity) scene.light.intensity = *intensity;
+  // frames x spp samples per pixel must fit the target counter.
+  if (std::uint64_t(std::max(frames, 1)) * std::uint64_t(s.spp) > (1ull << 30))
+    return usage("--frames " + std::to_string(std::max(frames, 1)) + " x --spp " +
+                 std::to_string(s.spp) + " is more than 2^30 samples per pixel");
   for (const auto& [path, option] : {std::pair{out_png, "--out"}, {out_float, "--out-float"},
                                      {stats_json, "--stats"}, {screenshot, "--screenshot"}}) {
     if (auto err = check_output(path, option); !err.empty()) return usage(err);

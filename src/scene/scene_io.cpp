@@ -258,6 +258,12 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
     cam.width = int(c.integer("width", 1, 16384, cam.width));
     cam.height = int(c.integer("height", 1, 16384, cam.height));
+    // The accumulation holds 32 bytes a pixel (plus a 16-byte snapshot):
+    // 4096 x 4096 is half a gigabyte; beyond that, refuse rather than thrash.
+    constexpr long long kMaxPixels = 4096LL * 4096LL;
+    if ((long long)cam.width * cam.height > kMaxPixels)
+      c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
+                                   " pixels is more than 4096 x 4096");
     const vec3 fwd = cam.look_at - cam.position;
     if (fwd == vec3(0.0f)) c.fail(c.field("look_at"), "must differ from camera.position");
     const vec3 side = glm::cross(fwd, cam.up);
