@@ -17,3 +17,9 @@ add_dependencies(viewer_window_tests whisker)
 # renders share the machine's cores.
 gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
   PROPERTIES TIMEOUT 600 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# Real mouse and keyboard input through xdotool (skipped without it).
+add_test(NAME ViewerInput.PanelClicksRestartNothingDragOrbits
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_input_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.PanelClicksRestartNothingDragOrbits PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)

@@ -475,16 +475,16 @@ int run_viewer(const ViewerOptions& opt) {
       if (finish) break;
     }
 
-    if (opt.frames > 0) {
-      std::fprintf(stderr,
-                   "viewer: %s, %llu passes, %llu spp, %.2f passes/s; UI %zu frames, "
-                   "mean %.2f ms, p95 %.2f ms\n",
-                   s.scene_label.c_str(), (unsigned long long)s.snap.passes,
-                   (unsigned long long)s.snap.spp,
-                   s.snap.seconds > 0 ? s.snap.passes / s.snap.seconds : 0.0,
-                   fstats.total_ms.size(), FrameStats::mean(fstats.total_ms),
-                   FrameStats::pct(fstats.total_ms, 0.95));
-    }
+    // One closing line: what was rendered, and how many times the render
+    // restarted (the generation), which scripted input tests read.
+    std::fprintf(stderr,
+                 "viewer: %s, generation %llu, %llu passes, %llu spp, %.2f passes/s; UI %zu "
+                 "frames, mean %.2f ms, p95 %.2f ms\n",
+                 s.scene_label.c_str(), (unsigned long long)s.generation,
+                 (unsigned long long)s.snap.passes, (unsigned long long)s.snap.spp,
+                 s.snap.seconds > 0 ? s.snap.passes / s.snap.seconds : 0.0,
+                 fstats.total_ms.size(), FrameStats::mean(fstats.total_ms),
+                 FrameStats::pct(fstats.total_ms, 0.95));
     renderer.stop();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# Real input through the X server (xdotool) into the viewer under Xvfb:
+#   A. clicks on the panel and on the image, and a drag that starts on the
+#      panel and ends over the image, restart nothing and leave the camera
+#      where it was (ImGui's WantCaptureMouse);
+#   B. R restarts, a drag on the image orbits the camera, Esc quits (exit 0).
+# The viewer's closing line gives the generation (1 = never restarted); C
+# prints the camera. Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+#   viewer_input_test.sh path/to/whisker
+set -u
+bin=$1
+for tool in xvfb-run xdotool; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
+done
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+
+cat >"$dir/drive.sh" <<'EOF'
+#!/usr/bin/env bash
+# Runs inside xvfb-run. Presses are held for a moment so a frame sees them
+# even when the machine is busy.
+bin=$1 dir=$2
+press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
+click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
+drag() {  # x0 y0 x1 y1
+  xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.2
+  for k in 1 2 3 4 5 6; do
+    xdotool mousemove --window "$wid" $(( $1 + ($3 - $1) * k / 6 )) $(( $2 + ($4 - $2) * k / 6 )); sleep 0.1
+  done
+  xdotool mouseup 1; sleep 0.5
+}
+session() {  # name actions...
+  local name=$1; shift
+  LIBGL_ALWAYS_SOFTWARE=1 "$bin" --scene three-balls --threads 1 >"$dir/$name.out" 2>"$dir/$name.err" &
+  local pid=$!
+  wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
+  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$name.err"; kill $pid; return; }
+  sleep 2
+  "$@"
+  press Escape
+  wait $pid
+  echo "exit $?" >>"$dir/$name.err"
+}
+# The window is 912x800: the image left (512 wide), the panel right; the
+# panel's bottom is empty below its last header.
+A() { click 880 780; click 256 400; drag 700 780 300 400; press c; }
+B() { press r; drag 256 400 320 400; press c; }
+session A A
+session B B
+EOF
+
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
+generation() { sed -n 's/.*generation \([0-9]*\),.*/\1/p' "$dir/$1.err"; }
+eye_x() { python3 -c 'import json,sys; print(json.loads(sys.stdin.read())["camera"]["position"][0])' <"$dir/$1.out"; }
+echo "--- A"; cat "$dir/A.err"; echo "--- B"; cat "$dir/B.err"
+check "A: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/A.err"'
+check "A: panel and image clicks and a drag from the panel restarted nothing (generation 1)" '[ "$(generation A)" = 1 ]'
+check "A: the camera did not move (eye x = 0)" '[ "$(eye_x A)" = 0.0 ]'
+check "B: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/B.err"'
+check "B: R and the drag restarted the render (generation >= 3)" '[ "$(generation B)" -ge 3 ]'
+check "B: the drag on the image orbited the camera (eye x != 0)" '[ "$(eye_x B)" != 0.0 ]'
+exit $fail
