@@ -12,18 +12,8 @@ namespace {
 // Leaves of the binary SAH tree hold at most one packet.
 constexpr std::uint32_t kSahMaxLeaf = kWidth;
 
-// Slab test of one box, conservative as in bvh_wide.cpp.
 bool box_hit(const Box3& b, const Ray& ray, float tmax) {
-  float tn = ray.tmin, tf = kInf;
-  for (int a = 0; a < 3; ++a) {
-    float d = ray.d[a];
-    if (std::fabs(d) < 1e-30f) d = std::copysign(1e-30f, d);
-    const float inv = 1.0f / d;
-    const float t0 = (b.lo[a] - ray.o[a]) * inv, t1 = (b.hi[a] - ray.o[a]) * inv;
-    tn = std::max(tn, std::min(t0, t1));
-    tf = std::min(tf, std::max(t0, t1));
-  }
-  return tn <= std::min(tf * (1.0f + 4e-7f), tmax);  // 1 + 2 gamma(3), rounded up (Ize 2013)
+  return box_entry(b, ray, safe_inverse(ray.d), tmax) < kInf;
 }
 
 // Exactly zero area: the edge cross product is zero. Products of floats are

@@ -7,27 +7,6 @@
 
 namespace whisker {
 
-namespace {
-
-// Slab test (Kay and Kajiya): the entry distance, or kInf on a miss. The
-// exit is widened by 2 gamma_3 so rounding never culls a box the ray grazes
-// (Ize, "Robust BVH Ray Traversal", JCGT 2013).
-float enter(const Box3& b, const Ray& r, const vec3& inv) {
-  float t0 = r.tmin, t1 = r.tmax;
-  for (int a = 0; a < 3; ++a) {
-    float tn = (b.lo[a] - r.o[a]) * inv[a];
-    float tf = (b.hi[a] - r.o[a]) * inv[a];
-    if (tn > tf) std::swap(tn, tf);
-    tf *= 1.0f + 2.0f * 3.0f * 0x1p-24f / (1.0f - 3.0f * 0x1p-24f);
-    t0 = tn > t0 ? tn : t0;  // NaN (0 * inf) leaves the bound as it was
-    t1 = tf < t1 ? tf : t1;
-    if (t0 > t1) return kInf;
-  }
-  return t0;
-}
-
-}  // namespace
-
 ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
   // Objects 0..n-1 are the spheres, object n the mesh (if any).
   std::vector<Box3> boxes;
@@ -91,7 +70,7 @@ bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
   // A single leaf (every scene of the report): its exact tests are all the
   // culling there is; a box test in front would only cost.
   if (nodes_.size() == 1) return intersect_leaf(leaves_[0], ray, hit, mesh);
-  const vec3 inv(1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z);
+  const vec3 inv = safe_inverse(ray.d);
   bool found = false;
   struct Entry {
     std::uint32_t node;
@@ -99,7 +78,7 @@ bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
   };
   Entry stack[128];  // trivial, so not zeroed per ray; builder depth is at most 72
   int top = 0;
-  const float t_root = enter(nodes_[0].box, ray, inv);
+  const float t_root = box_entry(nodes_[0].box, ray, inv, ray.tmax);
   if (t_root == kInf) return false;
   stack[top++] = {0u, t_root};
   while (top > 0) {
@@ -111,8 +90,8 @@ bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
       continue;
     }
     // Nearer child on top of the stack, so it is opened first.
-    const float tl = enter(nodes_[n.left].box, ray, inv);
-    const float tr = enter(nodes_[n.right].box, ray, inv);
+    const float tl = box_entry(nodes_[n.left].box, ray, inv, ray.tmax);
+    const float tr = box_entry(nodes_[n.right].box, ray, inv, ray.tmax);
     const bool left_first = tl <= tr;
     const Entry a{left_first ? n.left : n.right, left_first ? tl : tr};
     const Entry b{left_first ? n.right : n.left, left_first ? tr : tl};
@@ -130,13 +109,13 @@ bool ObjectBvh::occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh)
 bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh) const {
   if (nodes_.empty()) return false;
   if (nodes_.size() == 1) return occluded_leaf(leaves_[0], ray, mesh);
-  const vec3 inv(1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z);
+  const vec3 inv = safe_inverse(ray.d);
   std::uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& n = nodes_[stack[--top]];
-    if (enter(n.box, ray, inv) == kInf) continue;
+    if (box_entry(n.box, ray, inv, ray.tmax) == kInf) continue;
     if (n.leaf != kInner) {
       if (occluded_leaf(leaves_[n.leaf], ray, mesh)) return true;
       continue;
