@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
-#include <map>
 #include <string>
 #include <thread>
 
@@ -25,10 +24,6 @@ namespace {
 
 using namespace whisker;
 
-const std::map<std::string, AccelKind> kAccel = {{"brute", AccelKind::Brute},
-                                                 {"bbox", AccelKind::BBox},
-                                                 {"midpoint", AccelKind::Midpoint},
-                                                 {"sah", AccelKind::Sah}};
 
 struct Options {
   std::string file;
@@ -66,7 +61,9 @@ int run_rays(const Options& opt) {
   std::vector<Ray> rays = bench::read_rays(opt.file);
   if (opt.limit > 0 && opt.limit < rays.size()) rays.resize(opt.limit);
   const std::vector<Triangle> tris = subdivide(bench::load_cat(opt.mesh), opt.subdivide);
-  const Bvh bvh = Bvh::build(tris, kAccel.at(opt.accel));
+  AccelKind kind = AccelKind::Sah;
+  parse(opt.accel, kind);  // CLI11 has checked the name
+  const Bvh bvh = Bvh::build(tris, kind);
   auto trace = [&](const Ray& r, float& t) {
     Hit h;
     if (!bvh.intersect(r, h)) return false;

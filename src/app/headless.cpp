@@ -13,22 +13,6 @@
 
 namespace whisker {
 
-namespace {
-
-void write_text_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out) throw ImageError(path + ": cannot write");
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw ImageError(path + ": cannot write");
-  }
-}
-
-}  // namespace
 
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
@@ -100,7 +84,12 @@ int run_headless(const HeadlessOptions& o) {
          {{"spp_per_pass", s.spp}, {"max_depth", s.max_depth}, {"indirect", s.indirect},
           {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)},
           {"sampler", to_string(s.sampler)}, {"zero_cutoff", s.zero_cutoff}}}};
-    write_text_atomically(o.stats_json, j.dump(2) + "\n");
+    write_file_atomically(o.stats_json, [&](const std::string& tmp) {
+      std::ofstream out(tmp);
+      out << j.dump(2) << "\n";
+      out.close();
+      return bool(out);
+    });
   }
   return 0;
 }

@@ -129,13 +129,10 @@ int main(int argc, char** argv) {
   if (!indirect.empty()) s.indirect = indirect == "on";
   if (!fresnel.empty()) s.fresnel = fresnel == "on";
   if (!aa.empty()) s.aa = aa == "on";
-  if (!sampler.empty())
-    s.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
+  // CLI11 has checked the names already.
+  if (!sampler.empty()) parse(sampler, s.sampler);
+  if (!accel.empty()) parse(accel, s.accel);
   if (!zero_cutoff.empty()) s.zero_cutoff = zero_cutoff == "on";
-  if (accel == "brute") s.accel = AccelKind::Brute;
-  if (accel == "bbox") s.accel = AccelKind::BBox;
-  if (accel == "midpoint") s.accel = AccelKind::Midpoint;
-  if (accel == "sah") s.accel = AccelKind::Sah;
   if (!light.empty()) {
     const auto v = parse_vec3(light);
     if (!v) return usage("--light " + light + ": expected three finite numbers x,y,z");

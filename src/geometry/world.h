@@ -35,7 +35,6 @@ class World {
   bool occluded(const Ray& ray) const;
 
   std::size_t sphere_count() const { return spheres_.size(); }
-  std::size_t object_node_count() const { return objects_.node_count(); }
   std::size_t triangle_count() const { return mesh_ ? mesh_->bvh.triangle_count() : 0; }
   const Bvh* bvh() const { return mesh_ ? &mesh_->bvh : nullptr; }
 

@@ -41,10 +41,8 @@ unsigned char to_srgb8(float radiance) {
   return v >= 255.0f ? 255 : static_cast<unsigned char>(v);
 }
 
-namespace {
-
-// Writes through `writer(tmp_path)` then renames onto `path`.
-void write_atomically(const std::string& path, const std::function<bool(const std::string&)>& writer) {
+void write_file_atomically(const std::string& path,
+                           const std::function<bool(const std::string&)>& writer) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
@@ -56,6 +54,7 @@ void write_atomically(const std::string& path, const std::function<bool(const st
   tmp_name.insert(tmp_name.begin(), '.');
   tmp_name += ".tmp-" + std::to_string(::getpid());
   const std::string tmp = (dir / tmp_name).string();
+  errno = 0;  // so a failure's reason is the writer's, not an older one
   if (!writer(tmp)) {
     const std::string why = errno ? std::strerror(errno) : "write failed";
     fs::remove(tmp, ec);
@@ -67,6 +66,8 @@ void write_atomically(const std::string& path, const std::function<bool(const st
     throw ImageError(path + ": cannot write: " + ec.message());
   }
 }
+
+namespace {
 
 void check(const Image& img, const std::string& path) {
   if (img.width <= 0 || img.height <= 0 ||
@@ -80,16 +81,14 @@ void write_png(const std::string& path, const Image& img) {
   check(img, path);
   std::vector<unsigned char> px(img.rgb.size());
   std::transform(img.rgb.begin(), img.rgb.end(), px.begin(), to_srgb8);
-  write_atomically(path, [&](const std::string& tmp) {
-    errno = 0;
+  write_file_atomically(path, [&](const std::string& tmp) {
     return stbi_write_png(tmp.c_str(), img.width, img.height, 3, px.data(), img.width * 3) != 0;
   });
 }
 
 void write_pfm(const std::string& path, const Image& img) {
   check(img, path);
-  write_atomically(path, [&](const std::string& tmp) {
-    errno = 0;
+  write_file_atomically(path, [&](const std::string& tmp) {
     std::ofstream out(tmp, std::ios::binary);
     if (!out) return false;
     // PFM: "PF", size, negative scale = little endian; rows bottom to top.
@@ -131,8 +130,7 @@ bool have_exr() {
 void write_exr(const std::string& path, const Image& img) {
   check(img, path);
 #ifdef WHISKER_HAVE_OPENEXR
-  write_atomically(path, [&](const std::string& tmp) {
-    errno = 0;
+  write_file_atomically(path, [&](const std::string& tmp) {
     try {
       Imf::Header header(img.width, img.height);
       for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));

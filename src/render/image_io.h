@@ -3,6 +3,7 @@
 // interrupted run never leaves a broken image.
 #pragma once
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -25,6 +26,11 @@ struct Image {
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
 // (light intensity applied), SCENES.md "Pixel value shown".
 unsigned char to_srgb8(float radiance);
+
+// Runs writer(temporary path) beside `path`, then renames the result onto
+// `path`; on failure removes the temporary and throws ImageError naming path.
+void write_file_atomically(const std::string& path,
+                           const std::function<bool(const std::string&)>& writer);
 
 void write_png(const std::string& path, const Image& img);
 void write_pfm(const std::string& path, const Image& img);

@@ -292,52 +292,41 @@ void ProgressiveRenderer::run_tiles() {
 void ProgressiveRenderer::end_pass() {
   Job& job = *job_;
   if (job.aborted) return;
-  if (job.preview_pass) {
-    job.preview_pass = false;
-    std::lock_guard lock(publish_mutex_);
-    Snapshot& s = published_;
-    s.width = job.width;
-    s.height = job.height;
-    s.sum = job.preview;
-    s.sum_sq.assign(job.preview.size() / 3, 0.0f);
-    s.spp = 1;
-    s.generation = job.generation;
-    s.version += 1;
-    s.passes = 0;
-    s.nan_count = 0;
-    s.rays = 0;
-    s.seconds = 0.0;
-    s.done = false;
-    s.preview = true;
-    s.triangles = job.world.triangle_count();
-    s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;
-    publish_cv_.notify_all();
-    return;
+  // A preview publishes its coarse image in a generation's first snapshot
+  // (every counter still zero) and leaves the accumulation alone.
+  const bool preview = job.preview_pass;
+  job.preview_pass = false;
+  if (!preview) {
+    job.spp_done += std::uint64_t(job.pass_spp);
+    job.passes += 1;
+    job.nan_count += job.pass_nans;
+    job.rays += job.pass_rays;
+    job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
   }
-  job.spp_done += std::uint64_t(job.pass_spp);
-  job.passes += 1;
-  job.nan_count += job.pass_nans;
-  job.rays += job.pass_rays;
-  job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
   const int target = job.scene.settings.target_spp;
 
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
   s.width = job.width;
   s.height = job.height;
-  s.sum.resize(job.acc.size());
-  for (std::size_t k = 0; k < job.acc.size(); ++k) s.sum[k] = float(job.acc[k]);
-  s.sum_sq.resize(job.acc_sq.size());
-  for (std::size_t k = 0; k < job.acc_sq.size(); ++k) s.sum_sq[k] = float(job.acc_sq[k]);
-  s.spp = job.spp_done;
+  if (preview) {
+    s.sum = job.preview;
+    s.sum_sq.assign(job.acc_sq.size(), 0.0f);
+  } else {
+    s.sum.resize(job.acc.size());
+    for (std::size_t k = 0; k < job.acc.size(); ++k) s.sum[k] = float(job.acc[k]);
+    s.sum_sq.resize(job.acc_sq.size());
+    for (std::size_t k = 0; k < job.acc_sq.size(); ++k) s.sum_sq[k] = float(job.acc_sq[k]);
+  }
+  s.spp = preview ? 1 : job.spp_done;  // the preview shows as one sample
   s.generation = job.generation;
   s.version += 1;
   s.passes = job.passes;
   s.nan_count = job.nan_count;
   s.rays = job.rays;
   s.seconds = job.seconds;
-  s.done = target > 0 && job.spp_done >= std::uint64_t(target);
-  s.preview = false;
+  s.done = !preview && target > 0 && job.spp_done >= std::uint64_t(target);
+  s.preview = preview;
   s.triangles = job.world.triangle_count();
   s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;
   publish_cv_.notify_all();

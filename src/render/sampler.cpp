@@ -70,8 +70,17 @@ std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
 }
 
 std::uint32_t sobol_dim1(std::uint32_t index) { return kDim1(index); }
-std::uint32_t sobol_dim2(std::uint32_t index) { return kDim2(index); }
-std::uint32_t sobol_dim3(std::uint32_t index) { return kDim3(index); }
+
+// Each kind sets up only what it draws from.
+Sampler::Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
+    : kind_(kind) {
+  if (kind == SamplerKind::Independent) {
+    rng_ = Rng(pixel, sample, seed);
+  } else {
+    reversed_index_ = reverse_bits(std::uint32_t(sample));
+    key_ = std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel));
+  }
+}
 
 void Sampler::sobol2d(float& u, float& v) {
   if (dim_ < 2) {
@@ -104,7 +113,5 @@ void Sampler::sobol2d(float& u, float& v) {
   u = float(x >> 8) * 0x1p-24f;
   v = float(y >> 8) * 0x1p-24f;
 }
-
-std::uint32_t Sampler::reverse(std::uint32_t x) { return reverse_bits(x); }
 
 }  // namespace whisker

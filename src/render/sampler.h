@@ -20,6 +20,7 @@ inline std::uint64_t mix64(std::uint64_t z) {
 // start is a hash of the pixel, the sample index and the seed.
 class Rng {
  public:
+  Rng() = default;
   Rng(std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
       : state_(mix64(mix64(mix64(seed ^ 0x5157A3C4B2A1ull) + pixel) + sample)) {}
 
@@ -31,7 +32,7 @@ class Rng {
   float uniform() { return float(next_u64() >> 40) * 0x1p-24f; }
 
  private:
-  std::uint64_t state_;
+  std::uint64_t state_ = 0;
 };
 
 // Owen-scrambled Sobol points (Burley, "Practical Hash-based Owen
@@ -43,16 +44,12 @@ class Rng {
 // coordinate.
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
 std::uint32_t sobol_dim1(std::uint32_t index);
-std::uint32_t sobol_dim2(std::uint32_t index);
-std::uint32_t sobol_dim3(std::uint32_t index);
 
 // What the estimator draws its numbers from: independent uniforms (the
 // report's method) or the scrambled Sobol points.
 class Sampler {
  public:
-  Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed)
-      : kind_(kind), rng_(pixel, sample, seed), reversed_index_(reverse(std::uint32_t(sample))),
-        key_(std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel))) {}
+  Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed);
 
   float get1d() {
     if (kind_ == SamplerKind::Independent) return rng_.uniform();
@@ -71,12 +68,11 @@ class Sampler {
 
  private:
   void sobol2d(float& u, float& v);
-  static std::uint32_t reverse(std::uint32_t x);
 
   SamplerKind kind_;
-  Rng rng_;
-  std::uint32_t reversed_index_;  // the sample index, bits reversed (Sobol dimension 0)
-  std::uint32_t key_;
+  Rng rng_;                           // Independent only
+  std::uint32_t reversed_index_ = 0;  // Sobol only: the sample index, bits reversed
+  std::uint32_t key_ = 0;             // Sobol only: per-pixel scrambling seed
   std::uint32_t dim_ = 0;  // dimension pair counter
 };
 

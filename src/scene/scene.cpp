@@ -1,29 +1,51 @@
 #include "scene/scene.h"
 
+#include <array>
+#include <utility>
+
 namespace whisker {
 
-const char* to_string(MaterialKind k) {
-  switch (k) {
-    case MaterialKind::Diffuse: return "diffuse";
-    case MaterialKind::Mirror: return "mirror";
-    case MaterialKind::Glass: return "glass";
-    case MaterialKind::HollowGlass: return "hollow_glass";
-  }
+namespace {
+
+// One table of names per enum: to_string and parse read the same one.
+template <class E, std::size_t N>
+using Names = std::array<std::pair<E, const char*>, N>;
+
+constexpr Names<MaterialKind, 4> kMaterials{{{MaterialKind::Diffuse, "diffuse"},
+                                             {MaterialKind::Mirror, "mirror"},
+                                             {MaterialKind::Glass, "glass"},
+                                             {MaterialKind::HollowGlass, "hollow_glass"}}};
+constexpr Names<AccelKind, 4> kAccels{{{AccelKind::Brute, "brute"},
+                                       {AccelKind::BBox, "bbox"},
+                                       {AccelKind::Midpoint, "midpoint"},
+                                       {AccelKind::Sah, "sah"}}};
+constexpr Names<SamplerKind, 2> kSamplers{{{SamplerKind::Independent, "independent"},
+                                           {SamplerKind::Sobol, "sobol"}}};
+
+template <class E, std::size_t N>
+const char* name_of(const Names<E, N>& names, E e) {
+  for (const auto& [k, n] : names)
+    if (k == e) return n;
   return "?";
 }
 
-const char* to_string(AccelKind k) {
-  switch (k) {
-    case AccelKind::Brute: return "brute";
-    case AccelKind::BBox: return "bbox";
-    case AccelKind::Midpoint: return "midpoint";
-    case AccelKind::Sah: return "sah";
-  }
-  return "?";
+template <class E, std::size_t N>
+bool value_of(const Names<E, N>& names, std::string_view s, E& out) {
+  for (const auto& [k, n] : names)
+    if (s == n) {
+      out = k;
+      return true;
+    }
+  return false;
 }
 
-const char* to_string(SamplerKind k) {
-  return k == SamplerKind::Independent ? "independent" : "sobol";
-}
+}  // namespace
+
+const char* to_string(MaterialKind k) { return name_of(kMaterials, k); }
+const char* to_string(AccelKind k) { return name_of(kAccels, k); }
+const char* to_string(SamplerKind k) { return name_of(kSamplers, k); }
+bool parse(std::string_view s, MaterialKind& out) { return value_of(kMaterials, s, out); }
+bool parse(std::string_view s, AccelKind& out) { return value_of(kAccels, s, out); }
+bool parse(std::string_view s, SamplerKind& out) { return value_of(kSamplers, s, out); }
 
 }  // namespace whisker

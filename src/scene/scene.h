@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -91,5 +92,9 @@ struct Scene {
 const char* to_string(MaterialKind k);
 const char* to_string(AccelKind k);
 const char* to_string(SamplerKind k);
+// The names above back to values; false for an unknown name.
+bool parse(std::string_view s, MaterialKind& out);
+bool parse(std::string_view s, AccelKind& out);
+bool parse(std::string_view s, SamplerKind& out);
 
 }  // namespace whisker

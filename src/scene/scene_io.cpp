@@ -138,32 +138,18 @@ Material read_material(const Fields& f) {
   f.only({"type", "albedo", "ior"});
   Material m;
   const std::string type = f.string("type");
-  if (type == "diffuse") {
-    m.kind = MaterialKind::Diffuse;
-    m.albedo = f.vector("albedo", 0.0, 1.0, vec3(1.0f));
-  } else if (type == "mirror") {
-    m.kind = MaterialKind::Mirror;
-  } else if (type == "glass" || type == "hollow_glass") {
-    m.kind = type == "glass" ? MaterialKind::Glass : MaterialKind::HollowGlass;
-    m.ior = float(f.number("ior", 1.0, 4.0, 1.5));
-  } else {
+  if (!parse(type, m.kind))
     f.fail(f.field("type"), "unknown material \"" + type +
                                 "\" (expected diffuse, mirror, glass or hollow_glass)");
-  }
+  if (m.kind == MaterialKind::Diffuse) m.albedo = f.vector("albedo", 0.0, 1.0, vec3(1.0f));
+  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+    m.ior = float(f.number("ior", 1.0, 4.0, 1.5));
   if (m.kind != MaterialKind::Diffuse && f.has("albedo"))
     f.fail(f.field("albedo"), "only diffuse materials have an albedo");
   if (m.kind == MaterialKind::Diffuse || m.kind == MaterialKind::Mirror) {
     if (f.has("ior")) f.fail(f.field("ior"), "only glass materials have an ior");
   }
   return m;
-}
-
-AccelKind parse_accel(const std::string& s, const Fields& f, const char* key) {
-  if (s == "brute") return AccelKind::Brute;
-  if (s == "bbox") return AccelKind::BBox;
-  if (s == "midpoint") return AccelKind::Midpoint;
-  if (s == "sah") return AccelKind::Sah;
-  f.fail(f.field(key), "unknown accel \"" + s + "\" (expected brute, bbox, midpoint or sah)");
 }
 
 std::string line_column(const std::string& text, std::size_t byte) {
@@ -287,13 +273,12 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     r.aa = s.boolean("aa", r.aa);
     r.seed = std::uint64_t(s.integer("seed", 0, (1LL << 53), (long long)r.seed));
     r.target_spp = int(s.integer("target_spp", 0, 1 << 30, r.target_spp));
-    if (s.has("accel")) r.accel = parse_accel(s.string("accel"), s, "accel");
-    if (s.has("sampler")) {
-      const std::string k = s.string("sampler");
-      if (k != "independent" && k != "sobol")
-        s.fail(s.field("sampler"), "unknown sampler \"" + k + "\" (expected independent or sobol)");
-      r.sampler = k == "sobol" ? SamplerKind::Sobol : SamplerKind::Independent;
-    }
+    if (s.has("accel") && !parse(s.string("accel"), r.accel))
+      s.fail(s.field("accel"), "unknown accel \"" + s.string("accel") +
+                                   "\" (expected brute, bbox, midpoint or sah)");
+    if (s.has("sampler") && !parse(s.string("sampler"), r.sampler))
+      s.fail(s.field("sampler"), "unknown sampler \"" + s.string("sampler") +
+                                     "\" (expected independent or sobol)");
     r.zero_cutoff = s.boolean("zero_cutoff", r.zero_cutoff);
   }
   if (top.has("spheres")) {
