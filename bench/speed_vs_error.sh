@@ -24,7 +24,7 @@
 #      ($BUILD/convergence/table.md, also printed) that goes into
 #      docs/PERFORMANCE.md.
 #
-# Methods: "report" = --sampler independent --zero-cutoff off (independent
+# Methods: "report" = --sampler independent --zero-cutoff off --split 1 (independent
 # uniform numbers, Gaussian jitter, fixed depth: the report's estimator);
 # "best" = Whisker's defaults, whatever they are (the flags used are read back
 # from the stats JSON into the CSV).
@@ -66,7 +66,7 @@ export WHISKER_ASSETS=${WHISKER_ASSETS:-$(cd "$ROOT/.." && pwd)/shared/assets}
 no_timer() { shift; "$@"; }
 TIMER=(/usr/bin/time -f "%U %S" -o)
 [ -x /usr/bin/time ] || TIMER=(no_timer)
-REPORT_FLAGS=(--sampler independent --zero-cutoff off)
+REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1)
 BEST_FLAGS=()
 
 log() { printf '\033[1mspeed_vs_error:\033[0m %s\n' "$*" >&2; }

@@ -1,6 +1,8 @@
 // The estimator against closed forms: reflection and refraction laws,
 // Schlick, the diffuse ball's direct light, and interreflection inside a
 // closed diffuse sphere.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -185,29 +187,54 @@ TEST(DirectLight, DiffuseBallPixelsEqualTheClosedForm) {
 // A point light at the centre of a closed diffuse sphere: every path sees the
 // same values, so with B = depth + 1 diffuse hits
 //   L = rho I / (pi R^2) (1 - rho^B) / (1 - rho) * 1/(4 pi)   (report normalisation)
-// holds for every sample, to float precision.
+// holds for every sample, to float precision; also when each camera sample
+// splits into several indirect paths.
 TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
   const double rho = 0.6, I = 1000.0, R = 10.0;
-  for (int depth = 0; depth <= 5; ++depth) {
-    const Snapshot s = render(closed_sphere(float(rho), vec3(0.0f), depth, 64, 8));
-    const int B = depth + 1;
-    const double expect = rho * I / (kPi * R * R) * (1 - std::pow(rho, B)) / (1 - rho) / (4 * kPi);
-    for (int y = 0; y < 8; ++y)
-      for (int x = 0; x < 8; ++x)
-        for (int c = 0; c < 3; ++c) ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth;
+  for (int split : {1, 3}) {
+    for (int depth = 0; depth <= 5; ++depth) {
+      Scene scene = closed_sphere(float(rho), vec3(0.0f), depth, 64, 8);
+      scene.settings.split = split;
+      const Snapshot s = render(scene);
+      const int B = depth + 1;
+      const double expect = rho * I / (kPi * R * R) * (1 - std::pow(rho, B)) / (1 - rho) / (4 * kPi);
+      for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+          for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth << " split " << split;
+    }
   }
 }
 
 // Off-centre light c: at the first hit y,
 //   L(y) = rho/pi [I cos/|c-y|^2 + (I/R^2) rho (1 - rho^(B-1))/(1 - rho)] * 1/(4 pi)
 // (a cosine-sampled direction inside a sphere lands uniformly on its area).
-// Each pixel mean must sit within a few standard errors of it.
-TEST(IndirectLight, OffCentreLightInClosedSphere) {
+// Each pixel mean must sit within a few standard errors of it, with one
+// path per sample and with samples split into 4 (Sobol) or 3 (independent)
+// indirect paths, whose standard error comes from the same per-sample sums.
+struct OffCentreCase {
+  int split;
+  SamplerKind sampler;
+};
+class OffCentre : public ::testing::TestWithParam<OffCentreCase> {};
+
+INSTANTIATE_TEST_SUITE_P(Splits, OffCentre,
+                         ::testing::Values(OffCentreCase{1, SamplerKind::Sobol},
+                                           OffCentreCase{4, SamplerKind::Sobol},
+                                           OffCentreCase{3, SamplerKind::Independent}),
+                         [](const auto& info) {
+                           return std::string(to_string(info.param.sampler)) + "Split" +
+                                  std::to_string(info.param.split);
+                         });
+
+TEST_P(OffCentre, LightInClosedSphere) {
   const double rho = 0.5, I = 1000.0, R = 10.0;
   const glm::dvec3 c(3.0, -2.0, 1.0);
   for (int depth : {1, 3, 5}) {
-    const int spp = 4096, size = 6;
-    const Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
+    const int size = 6, spp = 4096 / GetParam().split;
+    Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
+    scene.settings.split = GetParam().split;
+    scene.settings.sampler = GetParam().sampler;
     const Snapshot s = render(scene);
     const int B = depth + 1;
     const CameraFrame cam(scene.camera);

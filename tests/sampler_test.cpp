@@ -136,3 +136,38 @@ TEST(Sampler, SameInputsSameNumbers) {
     EXPECT_NE(a1, c1);
   }
 }
+
+// Splitting: the `count` branches of one Sobol sample are an aligned block of
+// the sequence, so for count = 4 each coordinate of their next 2D request
+// (the first bounce here, then a padded pair) falls once in each quarter of
+// [0, 1); the branches of an independent sample differ.
+TEST(Sampler, SobolBranchesAreStratifiedAmongThemselves) {
+  for (std::uint32_t pixel : {0u, 7u, 1234u}) {
+    for (std::uint64_t i = 0; i < 64; ++i) {
+      for (int request = 1; request <= 2; ++request) {
+        Sampler s(SamplerKind::Sobol, pixel, i, 11);
+        float jx, jy;
+        s.get2d(jx, jy);  // the pixel jitter, shared by the branches
+        int seen_u = 0, seen_v = 0;
+        for (std::uint32_t k = 0; k < 4; ++k) {
+          Sampler b = s.branch(k, 4);
+          float u, v;
+          b.get2d(u, v);
+          if (request == 2) b.get2d(u, v);
+          seen_u |= 1 << int(u * 4.0f);
+          seen_v |= 1 << int(v * 4.0f);
+        }
+        ASSERT_EQ(seen_u, 15) << "pixel " << pixel << " sample " << i << " request " << request;
+        ASSERT_EQ(seen_v, 15) << "pixel " << pixel << " sample " << i << " request " << request;
+      }
+    }
+  }
+}
+
+TEST(Sampler, IndependentBranchesDiffer) {
+  Sampler s(SamplerKind::Independent, 3, 4, 5);
+  std::vector<float> first;
+  for (std::uint32_t k = 0; k < 8; ++k) first.push_back(s.branch(k, 8).get1d());
+  std::sort(first.begin(), first.end());
+  EXPECT_EQ(std::adjacent_find(first.begin(), first.end()), first.end());
+}

@@ -100,6 +100,7 @@ TEST(SceneFiles, BadFieldsAreNamed) {
       {R"({"settings": {"indirect": "yes"}})", "bad.json: settings.indirect: must be true or false"},
       {R"({"settings": {"max_depth": -1}})", "bad.json: settings.max_depth: must be in [0, 1000]"},
       {R"({"settings": {"accel": "kd"}})", "bad.json: settings.accel: unknown accel"},
+      {R"({"settings": {"split": 0}})", "bad.json: settings.split: must be in [1, 1024]"},
       {R"({"spheres": {}})", "bad.json: spheres: must be an array"},
       {R"({"spheres": [{"center": [0,0,0], "radius": -1, "material": {"type": "diffuse"}}]})",
        "bad.json: spheres[0].radius: must be positive"},

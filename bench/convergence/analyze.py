@@ -130,6 +130,7 @@ def main():
         rows.append({
             "scene": scene, "method": method,
             "sampler": s.get("sampler", ""), "zero_cutoff": "on" if s.get("zero_cutoff") else "off",
+            "split": s.get("split", 1),
             "aa": "on" if s["aa"] else "off", "indirect": "on" if s["indirect"] else "off",
             "fresnel": "on" if s["fresnel"] else "off", "max_depth": s["max_depth"],
             "width": st["width"], "height": st["height"], "threads": st["threads"],
@@ -160,7 +161,8 @@ def main():
         c["cpu"].append(median(cpus) / rs[0]["threads"] if len(cpus) == len(rs) else None)
         c["mse"].append(sum(r["mse"] for r in rs) / len(rs))
         c["rel"].append(sum(r["rel_mse"] for r in rs) / len(rs))
-        flags[(scene, method)] = f"--sampler {rs[0]['sampler']} --zero-cutoff {rs[0]['zero_cutoff']}"
+        flags[(scene, method)] = (f"--sampler {rs[0]['sampler']} --zero-cutoff {rs[0]['zero_cutoff']}"
+                                   f" --split {rs[0]['split']}")
     order = ["three-balls-fresnel", "indirect", "cat", "closed-sphere"]
     scenes = sorted({k[0] for k in curves}, key=lambda s: order.index(s) if s in order else 99)
     res_of = {r["scene"]: r["width"] for r in rows}

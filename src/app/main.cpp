@@ -58,7 +58,7 @@ int main(int argc, char** argv) {
   std::string scene_name = "cat";
   std::string mesh;
   int frames = 0;
-  std::optional<int> spp, depth, target_spp;
+  std::optional<int> spp, depth, target_spp, split;
   int threads = 0;
   std::optional<std::uint64_t> seed;
   std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff;
@@ -90,6 +90,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"independent", "sobol"}));
   app.add_option("--zero-cutoff", zero_cutoff, "End paths whose throughput is zero")
       ->check(CLI::IsMember({"on", "off"}));
+  app.add_option("--split", split, "Indirect paths per camera sample (shared first hit)")
+      ->check(CLI::Range(1, 1024));
   app.add_option("--light", light, "Light position x,y,z");
   app.add_option("--intensity", intensity, "Light intensity")->check(CLI::Range(0.0, 1e30));
   app.add_option("--out", out_png, "PNG output (the report's display mapping)");
@@ -133,6 +135,7 @@ int main(int argc, char** argv) {
   if (!sampler.empty()) parse(sampler, s.sampler);
   if (!accel.empty()) parse(accel, s.accel);
   if (!zero_cutoff.empty()) s.zero_cutoff = zero_cutoff == "on";
+  if (split) s.split = *split;
   if (!light.empty()) {
     const auto v = parse_vec3(light);
     if (!v) return usage("--light " + light + ": expected three finite numbers x,y,z");

@@ -1,5 +1,6 @@
 #include "render/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -51,17 +52,28 @@ vec3 cosine_direction(const vec3& n, float u1, float u2) {
   return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(u2) * n);
 }
 
-vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
-              Ray ray, Sampler& sampler, PathStats& stats) {
-  vec3 L(0.0f), beta(1.0f);
+namespace {
+
+// The light a path gathers from `ray` on, given its throughput `beta` so far
+// and the number of hits before it. `split` > 1: at the first diffuse hit,
+// that many continuations are traced and averaged (splitting: each is an
+// unbiased estimate of the same integral, so their mean is too).
+vec3 trace(const World& world, const PointLight& light, const RenderSettings& settings, Ray ray,
+           vec3 beta, int first_depth, int split, Sampler& sampler, PathStats& stats) {
+  vec3 L(0.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
-  for (int depth = 0; depth <= settings.max_depth; ++depth) {
+  for (int depth = first_depth; depth <= settings.max_depth; ++depth) {
     SurfaceHit h;
     ++stats.rays;
     if (!world.intersect(ray, h)) break;
     const Material& m = *h.material;
     switch (m.kind) {
       case MaterialKind::Diffuse: {
+        // A path that can carry no more light ends here (the walls' albedos
+        // are pure primaries): its light and bounce would both be multiplied
+        // by zero. It changes the time, not the estimate.
+        beta *= m.albedo;
+        if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
         // Shade the side the ray arrived from.
         const vec3 ng = glm::dot(h.ng, ray.d) < 0.0f ? h.ng : -h.ng;
         const vec3 ns = glm::dot(h.ns, ng) >= 0.0f ? h.ns : -h.ns;
@@ -74,14 +86,23 @@ vec3 radiance(const World& world, const PointLight& light, const RenderSettings&
         if (cos_s > 0.0f && glm::dot(ng, wi) > 0.0f) {
           ++stats.rays;
           if (!world.occluded(spawn_shadow_ray(h.p, ng, light.position)))
-            L += beta * m.albedo * (light.intensity * cos_s / (4.0f * kPi * kPi * d2));
+            L += beta * (light.intensity * cos_s / (4.0f * kPi * kPi * d2));
         }
         if (!settings.indirect) return L;
-        // Indirect, report section 3: cosine sampling makes the estimator rho * L_in.
-        beta *= m.albedo;
-        // A path that can carry no more light ends here (the walls' albedos
-        // are pure primaries); it changes the time, not the estimate.
-        if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
+        // Indirect, report section 3: cosine sampling makes the estimator rho * L_in
+        // (beta already holds rho).
+        if (depth == settings.max_depth) return L;
+        if (split > 1) {
+          vec3 sum(0.0f);
+          for (int k = 0; k < split; ++k) {
+            Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
+            float u1, u2;
+            branch.get2d(u1, u2);
+            const Ray r = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
+            sum += trace(world, light, settings, r, beta, depth + 1, 1, branch, stats);
+          }
+          return L + sum / float(split);
+        }
         float u1, u2;
         sampler.get2d(u1, u2);
         ray = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
@@ -110,6 +131,14 @@ vec3 radiance(const World& world, const PointLight& light, const RenderSettings&
     }
   }
   return L;
+}
+
+}  // namespace
+
+vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
+              Ray ray, Sampler& sampler, PathStats& stats) {
+  return trace(world, light, settings, ray, vec3(1.0f), 0, std::max(1, settings.split), sampler,
+               stats);
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,

@@ -82,6 +82,16 @@ Sampler::Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, st
   }
 }
 
+Sampler Sampler::branch(std::uint32_t k, std::uint32_t count) {
+  Sampler b = *this;
+  if (kind_ == SamplerKind::Independent) {
+    b.rng_ = Rng(k, rng_.next_u64(), 0);
+  } else {
+    b.reversed_index_ = reverse_bits(reverse_bits(reversed_index_) * count + k);
+  }
+  return b;
+}
+
 void Sampler::sobol2d(float& u, float& v) {
   if (dim_ < 2) {
     // The first four dimensions (pixel jitter and the first bounce, or the

@@ -66,6 +66,12 @@ class Sampler {
     sobol2d(u, v);
   }
 
+  // Branch k of `count` taken from here on (splitting): the same dimension,
+  // with its own numbers. Sobol: sample index i becomes i*count + k, so the
+  // `count` branches of one sample are one aligned block of the sequence and
+  // stratified among themselves; the index must stay below 2^32.
+  Sampler branch(std::uint32_t k, std::uint32_t count);
+
  private:
   void sobol2d(float& u, float& v);
 

@@ -77,6 +77,10 @@ struct RenderSettings {
   AccelKind accel = AccelKind::Sah;
   SamplerKind sampler = SamplerKind::Sobol;
   bool zero_cutoff = true;  // end paths whose throughput is exactly zero
+  // Indirect paths traced from each camera sample's first diffuse hit, each
+  // weighted 1/split: the camera ray and the first direct-light ray are
+  // shared by all of them (1 = the report's one path per sample).
+  int split = 4;
 };
 
 struct Scene {

@@ -264,7 +264,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   if (top.has("settings")) {
     Fields s = top.object("settings");
     s.only({"spp", "max_depth", "indirect", "fresnel", "aa", "seed", "target_spp", "accel",
-            "sampler", "zero_cutoff"});
+            "sampler", "zero_cutoff", "split"});
     RenderSettings& r = scene.settings;
     r.spp = int(s.integer("spp", 1, 1 << 20, r.spp));
     r.max_depth = int(s.integer("max_depth", 0, 1000, r.max_depth));
@@ -280,6 +280,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       s.fail(s.field("sampler"), "unknown sampler \"" + s.string("sampler") +
                                      "\" (expected independent or sobol)");
     r.zero_cutoff = s.boolean("zero_cutoff", r.zero_cutoff);
+    r.split = int(s.integer("split", 1, 1024, r.split));
   }
   if (top.has("spheres")) {
     const json& arr = top.at("spheres");
@@ -379,7 +380,8 @@ std::string scene_to_json(const Scene& s) {
   j["settings"] = {{"spp", r.spp},         {"max_depth", r.max_depth}, {"indirect", r.indirect},
                    {"fresnel", r.fresnel}, {"aa", r.aa},               {"seed", r.seed},
                    {"target_spp", r.target_spp}, {"accel", to_string(r.accel)},
-                   {"sampler", to_string(r.sampler)}, {"zero_cutoff", r.zero_cutoff}};
+                   {"sampler", to_string(r.sampler)}, {"zero_cutoff", r.zero_cutoff},
+                   {"split", r.split}};
   j["spheres"] = json::array();
   for (const auto& sp : s.spheres) {
     json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", sp.radius},
