@@ -136,6 +136,9 @@ TEST(Headless, BadInputExitsTwoWithAMessage) {
       {"--headless --scene three-balls --light 1,2" + out, "--light 1,2: expected three finite numbers"},
       {"--headless --scene three-balls --indirect maybe" + out, "--indirect"},
       {"--headless --scene three-balls --spp 0" + out, "--spp"},
+      {"--headless --scene three-balls --split 4,x" + out, "--split 4,x: expected integers separated by commas"},
+      {"--headless --scene three-balls --split 4,0" + out, "--split 4,0: factors must be in [1, 64], got 0"},
+      {"--headless --scene three-balls --split 64,64,64" + out, "--split 64,64,64: the factors' product"},
       {"--headless --scene three-balls --spp 65536 --frames 65536" + out, "more than 2^30 samples per pixel"},
       {"--headless --scene three-balls", "needs at least one of --out"},
   };

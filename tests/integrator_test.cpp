@@ -191,7 +191,7 @@ TEST(DirectLight, DiffuseBallPixelsEqualTheClosedForm) {
 // splits into several indirect paths.
 TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
   const double rho = 0.6, I = 1000.0, R = 10.0;
-  for (int split : {1, 3}) {
+  for (const std::vector<int>& split : {std::vector<int>{1}, std::vector<int>{3, 2}}) {
     for (int depth = 0; depth <= 5; ++depth) {
       Scene scene = closed_sphere(float(rho), vec3(0.0f), depth, 64, 8);
       scene.settings.split = split;
@@ -201,7 +201,7 @@ TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
       for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x)
           for (int c = 0; c < 3; ++c)
-            ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth << " split " << split;
+            ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth << " split " << split_to_string(split);
     }
   }
 }
@@ -210,28 +210,34 @@ TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
 //   L(y) = rho/pi [I cos/|c-y|^2 + (I/R^2) rho (1 - rho^(B-1))/(1 - rho)] * 1/(4 pi)
 // (a cosine-sampled direction inside a sphere lands uniformly on its area).
 // Each pixel mean must sit within a few standard errors of it, with one
-// path per sample and with samples split into 4 (Sobol) or 3 (independent)
-// indirect paths, whose standard error comes from the same per-sample sums.
+// path per sample and with samples split 4 then 4 ways (Sobol) or 3 then 2
+// ways (independent), whose standard error comes from the same per-sample sums.
 struct OffCentreCase {
-  int split;
+  std::vector<int> split;
   SamplerKind sampler;
+  int paths() const {
+    int n = 1;
+    for (int k : split) n *= k;
+    return n;
+  }
 };
 class OffCentre : public ::testing::TestWithParam<OffCentreCase> {};
 
 INSTANTIATE_TEST_SUITE_P(Splits, OffCentre,
-                         ::testing::Values(OffCentreCase{1, SamplerKind::Sobol},
-                                           OffCentreCase{4, SamplerKind::Sobol},
-                                           OffCentreCase{3, SamplerKind::Independent}),
+                         ::testing::Values(OffCentreCase{{1}, SamplerKind::Sobol},
+                                           OffCentreCase{{4, 4}, SamplerKind::Sobol},
+                                           OffCentreCase{{3, 2}, SamplerKind::Independent}),
                          [](const auto& info) {
-                           return std::string(to_string(info.param.sampler)) + "Split" +
-                                  std::to_string(info.param.split);
+                           std::string name = to_string(info.param.sampler);
+                           for (int k : info.param.split) name += "Split" + std::to_string(k);
+                           return name;
                          });
 
 TEST_P(OffCentre, LightInClosedSphere) {
   const double rho = 0.5, I = 1000.0, R = 10.0;
   const glm::dvec3 c(3.0, -2.0, 1.0);
   for (int depth : {1, 3, 5}) {
-    const int size = 6, spp = 4096 / GetParam().split;
+    const int size = 6, spp = 4096 / GetParam().paths();
     Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
     scene.settings.split = GetParam().split;
     scene.settings.sampler = GetParam().sampler;

@@ -130,7 +130,7 @@ def main():
         rows.append({
             "scene": scene, "method": method,
             "sampler": s.get("sampler", ""), "zero_cutoff": "on" if s.get("zero_cutoff") else "off",
-            "split": s.get("split", 1),
+            "split": ",".join(str(k) for k in s.get("split", [1])),
             "aa": "on" if s["aa"] else "off", "indirect": "on" if s["indirect"] else "off",
             "fresnel": "on" if s["fresnel"] else "off", "max_depth": s["max_depth"],
             "width": st["width"], "height": st["height"], "threads": st["threads"],

@@ -58,10 +58,10 @@ int main(int argc, char** argv) {
   std::string scene_name = "cat";
   std::string mesh;
   int frames = 0;
-  std::optional<int> spp, depth, target_spp, split;
+  std::optional<int> spp, depth, target_spp;
   int threads = 0;
   std::optional<std::uint64_t> seed;
-  std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff;
+  std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff, split;
   std::optional<float> intensity;
   std::string out_png, out_float, stats_json, screenshot;
   int edit_after = -1;
@@ -90,8 +90,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"independent", "sobol"}));
   app.add_option("--zero-cutoff", zero_cutoff, "End paths whose throughput is zero")
       ->check(CLI::IsMember({"on", "off"}));
-  app.add_option("--split", split, "Indirect paths per camera sample (shared first hit)")
-      ->check(CLI::Range(1, 1024));
+  app.add_option("--split", split,
+                 "Indirect paths leaving the 1st, 2nd, ... diffuse hit, e.g. 4,4 (1 = the report's)");
   app.add_option("--light", light, "Light position x,y,z");
   app.add_option("--intensity", intensity, "Light intensity")->check(CLI::Range(0.0, 1e30));
   app.add_option("--out", out_png, "PNG output (the report's display mapping)");
@@ -135,7 +135,26 @@ int main(int argc, char** argv) {
   if (!sampler.empty()) parse(sampler, s.sampler);
   if (!accel.empty()) parse(accel, s.accel);
   if (!zero_cutoff.empty()) s.zero_cutoff = zero_cutoff == "on";
-  if (split) s.split = *split;
+  if (!split.empty()) {
+    std::vector<int> factors;
+    std::istringstream in(split);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+      std::size_t used = 0;
+      int k = 0;
+      try {
+        k = std::stoi(item, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != item.size())
+        return usage("--split " + split + ": expected integers separated by commas, e.g. 4,4");
+      factors.push_back(k);
+    }
+    if (const std::string why = check_split(factors); !why.empty())
+      return usage("--split " + split + ": " + why);
+    s.split = factors;
+  }
   if (!light.empty()) {
     const auto v = parse_vec3(light);
     if (!v) return usage("--light " + light + ": expected three finite numbers x,y,z");

@@ -73,9 +73,19 @@ World::World(const Scene& scene, const World* reuse) {
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {
   Hit hit;
+  if (!closest(ray, hit)) return false;
+  record(ray, hit, out);
+  return true;
+}
+
+bool World::closest(const Ray& ray, Hit& hit) const {
+  hit = Hit{};
   hit.t = ray.tmax;
   objects_.intersect(ray, hit, mesh_ ? &mesh_->bvh : nullptr);
-  if (!hit.valid()) return false;
+  return hit.valid();
+}
+
+void World::record(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
   out.t = hit.t;
   if (hit.kind == PrimKind::Sphere) {
     const Sphere& s = spheres_[hit.prim];
@@ -99,7 +109,6 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
     }
     out.material = &mesh_material_[obj];
   }
-  return true;
 }
 
 bool World::occluded(const Ray& ray) const {

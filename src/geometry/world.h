@@ -32,6 +32,15 @@ class World {
   explicit World(const Scene& scene, const World* reuse = nullptr);
 
   bool intersect(const Ray& ray, SurfaceHit& out) const;
+  // The same in two steps, so that a caller can look at the material before
+  // paying for the hit record (the double-precision sphere refinement):
+  // closest hit only, then the record of that hit.
+  bool closest(const Ray& ray, Hit& hit) const;
+  const Material& material(const Hit& hit) const {
+    return hit.kind == PrimKind::Sphere ? sphere_material_[hit.prim]
+                                        : mesh_material_[mesh_->object[hit.prim]];
+  }
+  void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   bool occluded(const Ray& ray) const;
 
   std::size_t sphere_count() const { return spheres_.size(); }

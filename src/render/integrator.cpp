@@ -45,35 +45,42 @@ float schlick(float cos_i, float n1, float n2) {
 vec3 cosine_direction(const vec3& n, float u1, float u2) {
   // Cosine-weighted hemisphere (report section 3, Scene::random_cos):
   // x = cos(2 pi u1) sqrt(1 - u2), y = sin(2 pi u1) sqrt(1 - u2), z = sqrt(u2).
+  // b1, b2, n are orthonormal, so the result is unit to rounding (a few ULP).
   const float r = std::sqrt(1.0f - u2);
   const float phi = 2.0f * kPi * u1;
   vec3 b1, b2;
   basis(n, b1, b2);
-  return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(u2) * n);
+  return r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(u2) * n;
 }
 
 namespace {
 
-// The light a path gathers from `ray` on, given its throughput `beta` so far
-// and the number of hits before it. `split` > 1: at the first diffuse hit,
-// that many continuations are traced and averaged (splitting: each is an
-// unbiased estimate of the same integral, so their mean is too).
+// The light a path gathers from `ray` on, given its throughput `beta` so far,
+// the number of hits before it and how many of those were diffuse. At the
+// d-th diffuse hit, settings.split[d] continuations are traced and averaged
+// (splitting: each is an unbiased estimate of the same integral, so their
+// mean is too, with less variance).
 vec3 trace(const World& world, const PointLight& light, const RenderSettings& settings, Ray ray,
-           vec3 beta, int first_depth, int split, Sampler& sampler, PathStats& stats) {
+           vec3 beta, int first_depth, int diffuse_hits, Sampler& sampler, PathStats& stats) {
   vec3 L(0.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
   for (int depth = first_depth; depth <= settings.max_depth; ++depth) {
-    SurfaceHit h;
+    Hit hit;
     ++stats.rays;
-    if (!world.intersect(ray, h)) break;
-    const Material& m = *h.material;
+    if (!world.closest(ray, hit)) break;
+    const Material& m = world.material(hit);
+    if (m.kind == MaterialKind::Diffuse) {
+      // A path that can carry no more light ends here (the walls' albedos
+      // are pure primaries): its light and bounce would both be multiplied
+      // by zero. It changes the time, not the estimate, and is decided
+      // before the hit record is made.
+      beta *= m.albedo;
+      if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
+    }
+    SurfaceHit h;
+    world.record(ray, hit, h);
     switch (m.kind) {
       case MaterialKind::Diffuse: {
-        // A path that can carry no more light ends here (the walls' albedos
-        // are pure primaries): its light and bounce would both be multiplied
-        // by zero. It changes the time, not the estimate.
-        beta *= m.albedo;
-        if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
         // Shade the side the ray arrived from.
         const vec3 ng = glm::dot(h.ng, ray.d) < 0.0f ? h.ng : -h.ng;
         const vec3 ns = glm::dot(h.ns, ng) >= 0.0f ? h.ns : -h.ns;
@@ -92,6 +99,10 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
         // Indirect, report section 3: cosine sampling makes the estimator rho * L_in
         // (beta already holds rho).
         if (depth == settings.max_depth) return L;
+        const int split = std::size_t(diffuse_hits) < settings.split.size()
+                              ? settings.split[std::size_t(diffuse_hits)]
+                              : 1;
+        ++diffuse_hits;
         if (split > 1) {
           vec3 sum(0.0f);
           for (int k = 0; k < split; ++k) {
@@ -99,7 +110,7 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
             float u1, u2;
             branch.get2d(u1, u2);
             const Ray r = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
-            sum += trace(world, light, settings, r, beta, depth + 1, 1, branch, stats);
+            sum += trace(world, light, settings, r, beta, depth + 1, diffuse_hits, branch, stats);
           }
           return L + sum / float(split);
         }
@@ -137,8 +148,7 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
 
 vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
               Ray ray, Sampler& sampler, PathStats& stats) {
-  return trace(world, light, settings, ray, vec3(1.0f), 0, std::max(1, settings.split), sampler,
-               stats);
+  return trace(world, light, settings, ray, vec3(1.0f), 0, 0, sampler, stats);
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,

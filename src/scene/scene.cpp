@@ -48,4 +48,31 @@ bool parse(std::string_view s, MaterialKind& out) { return value_of(kMaterials, 
 bool parse(std::string_view s, AccelKind& out) { return value_of(kAccels, s, out); }
 bool parse(std::string_view s, SamplerKind& out) { return value_of(kSamplers, s, out); }
 
+std::string check_split(const std::vector<int>& split) {
+  if (split.empty()) return "must hold at least one factor";
+  if (split.size() > std::size_t(kMaxSplitLevels))
+    return "at most " + std::to_string(kMaxSplitLevels) + " factors, got " +
+           std::to_string(split.size());
+  long long paths = 1;
+  for (int k : split) {
+    if (k < 1 || k > kMaxSplitFactor)
+      return "factors must be in [1, " + std::to_string(kMaxSplitFactor) + "], got " +
+             std::to_string(k);
+    paths *= k;
+  }
+  if (paths > kMaxSplitPaths)
+    return "the factors' product (paths per sample) must be at most " +
+           std::to_string(kMaxSplitPaths) + ", got " + std::to_string(paths);
+  return {};
+}
+
+std::string split_to_string(const std::vector<int>& split) {
+  std::string s;
+  for (int k : split) {
+    if (!s.empty()) s += ',';
+    s += std::to_string(k);
+  }
+  return s;
+}
+
 }  // namespace whisker

@@ -77,11 +77,18 @@ struct RenderSettings {
   AccelKind accel = AccelKind::Sah;
   SamplerKind sampler = SamplerKind::Sobol;
   bool zero_cutoff = true;  // end paths whose throughput is exactly zero
-  // Indirect paths traced from each camera sample's first diffuse hit, each
-  // weighted 1/split: the camera ray and the first direct-light ray are
-  // shared by all of them (1 = the report's one path per sample).
-  int split = 4;
+  // Splitting (issue 6): at the d-th diffuse hit of a path (d = 0: the
+  // first), split[d] indirect paths leave and their light is averaged; the
+  // path up to there and its direct-light ray are shared by all of them.
+  // Entries past the end are 1; {1} is the report's one path per sample.
+  std::vector<int> split{4, 4};
 };
+
+// Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
+constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;
+std::string check_split(const std::vector<int>& split);
+// "4,4" from {4, 4}.
+std::string split_to_string(const std::vector<int>& split);
 
 struct Scene {
   std::string name;

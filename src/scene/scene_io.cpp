@@ -280,7 +280,24 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       s.fail(s.field("sampler"), "unknown sampler \"" + s.string("sampler") +
                                      "\" (expected independent or sobol)");
     r.zero_cutoff = s.boolean("zero_cutoff", r.zero_cutoff);
-    r.split = int(s.integer("split", 1, 1024, r.split));
+    if (s.has("split")) {
+      // An integer (one factor, at the first diffuse hit) or an array of them.
+      const json& v = s.at("split");
+      std::vector<int> split;
+      if (v.is_number_integer()) {
+        split.push_back(int(std::clamp<long long>(v.get<long long>(), -1, 1 << 20)));
+      } else if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) {
+          if (!v[i].is_number_integer())
+            s.fail(s.field("split") + "[" + std::to_string(i) + "]", "must be an integer");
+          split.push_back(int(std::clamp<long long>(v[i].get<long long>(), -1, 1 << 20)));
+        }
+      } else {
+        s.fail(s.field("split"), "must be an integer or an array of integers");
+      }
+      if (const std::string why = check_split(split); !why.empty()) s.fail(s.field("split"), why);
+      r.split = split;
+    }
   }
   if (top.has("spheres")) {
     const json& arr = top.at("spheres");
