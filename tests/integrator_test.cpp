@@ -95,6 +95,18 @@ TEST(Optics, SchlickMatchesItsEndpoints) {
   EXPECT_NEAR(schlick(0.5f, 1.0f, 1.5f), 0.04f + 0.96f / 32.0f, 1e-6f);
 }
 
+TEST(Optics, SinCosOfATurnMatchesDoublePrecision) {
+  double worst = 0.0;
+  for (int k = 0; k <= 1 << 20; ++k) {
+    const float u = float(k) / float(1 << 20);
+    float s, c;
+    sincos_turn(u, s, c);
+    const double a = 2.0 * kPi * double(u);
+    worst = std::max({worst, std::fabs(s - std::sin(a)), std::fabs(c - std::cos(a))});
+  }
+  EXPECT_LT(worst, 1e-7);
+}
+
 TEST(Optics, CosineSamplingHasTheRightMoments) {
   // For p(w) = cos/pi: E[cos] = 2/3, E[cos^2] = 1/2, and the tangential
   // components average to zero.

@@ -23,6 +23,23 @@ void basis(const vec3& n, vec3& b1, vec3& b2) {
 }
 }  // namespace
 
+void sincos_turn(float u, float& s, float& c) {
+  // 2 pi u = q pi/2 + x with q = round(4u), |x| <= pi/4, where the Taylor
+  // series to x^9 (sin) and x^8 (cos) are within 3e-8 of the truth
+  // (remainders x^11/11! and x^10/10!).
+  const float q = std::nearbyint(4.0f * u);
+  const float x = (4.0f * u - q) * (0.5f * kPi);
+  const float x2 = x * x;
+  const float sx = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+  const float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
+  switch (int(q) & 3) {  // rotate by q quarter turns
+    case 0: s = sx; c = cx; break;
+    case 1: s = cx; c = -sx; break;
+    case 2: s = -sx; c = -cx; break;
+    default: s = -cx; c = sx; break;
+  }
+}
+
 vec3 reflect(const vec3& d, const vec3& n) { return d - 2.0f * glm::dot(n, d) * n; }
 
 bool refract(const vec3& d, const vec3& n, float eta, vec3& out) {
@@ -47,10 +64,11 @@ vec3 cosine_direction(const vec3& n, float u1, float u2) {
   // x = cos(2 pi u1) sqrt(1 - u2), y = sin(2 pi u1) sqrt(1 - u2), z = sqrt(u2).
   // b1, b2, n are orthonormal, so the result is unit to rounding (a few ULP).
   const float r = std::sqrt(1.0f - u2);
-  const float phi = 2.0f * kPi * u1;
+  float s, c;
+  sincos_turn(u1, s, c);
   vec3 b1, b2;
   basis(n, b1, b2);
-  return r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(u2) * n;
+  return r * c * b1 + r * s * b2 + std::sqrt(u2) * n;
 }
 
 namespace {
@@ -160,8 +178,10 @@ vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam
     sampler.get2d(u1, u2);
     u1 = 1.0f - u1;  // (0, 1]: log stays finite
     const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
-    dx = r * std::cos(2.0f * kPi * u2);
-    dy = r * std::sin(2.0f * kPi * u2);
+    float s, c;
+    sincos_turn(u2, s, c);
+    dx = r * c;
+    dy = r * s;
   }
   return radiance(world, scene.light, scene.settings, cam.ray(i, j, dx, dy), sampler, stats);
 }

@@ -33,6 +33,8 @@ vec3 reflect(const vec3& d, const vec3& n);
 bool refract(const vec3& d, const vec3& n, float eta, vec3& out);
 // Schlick's approximation of the Fresnel reflectance.
 float schlick(float cos_i, float n1, float n2);
+// sin and cos of 2 pi u, for u in [0, 1], to within 1e-7.
+void sincos_turn(float u, float& s, float& c);
 // Cosine-distributed direction around unit n from two uniforms.
 vec3 cosine_direction(const vec3& n, float u1, float u2);
 

@@ -1,15 +1,27 @@
 #include "render/sampler.h"
 
+#ifdef __GFNI__
+#include <immintrin.h>
+#endif
+
 namespace whisker {
 
 namespace {
 
 std::uint32_t reverse_bits(std::uint32_t x) {
+#ifdef __GFNI__
+  // The affine transform with matrix 0x8040201008040201 reverses the bits of
+  // each byte (Intel SDM, GF2P8AFFINEQB); a byte swap finishes the job.
+  const __m128i v = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128(int(x)),
+                                               _mm_set1_epi64x(0x8040201008040201ll), 0);
+  return __builtin_bswap32(std::uint32_t(_mm_cvtsi128_si32(v)));
+#else
   x = (x << 16) | (x >> 16);
   x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
   x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
   x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
   return ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+#endif
 }
 
 std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
