@@ -68,19 +68,17 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     const __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], ox, oy, oz, dx, dy, dz, tmin,
                            _mm256_set1_ps(best));
-    int mask = _mm256_movemask_ps(_mm256_cmp_ps(t, _mm256_set1_ps(best), _CMP_LT_OQ));
-    if (!mask) continue;
-    alignas(32) float ts[8];
-    _mm256_store_ps(ts, t);
-    while (mask) {
-      const int lane = __builtin_ctz(unsigned(mask));
-      mask &= mask - 1;
-      if (ts[lane] < best) {
-        best = ts[lane];
-        index = id_[k + lane];
-        found = true;
-      }
-    }
+    // Horizontal minimum without branches (hits are t < best; misses are
+    // +inf), then the first lane that holds it.
+    __m256 m = _mm256_min_ps(t, _mm256_permute2f128_ps(t, t, 1));
+    m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    const float t_min = _mm256_cvtss_f32(m);
+    if (!(t_min < best)) continue;
+    const int lane = __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(t, m, _CMP_EQ_OQ))));
+    best = t_min;
+    index = id_[k + lane];
+    found = true;
   }
   if (found) t_out = best;
   return found;
