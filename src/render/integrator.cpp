@@ -23,23 +23,6 @@ void basis(const vec3& n, vec3& b1, vec3& b2) {
 }
 }  // namespace
 
-void sincos_turn(float u, float& s, float& c) {
-  // 2 pi u = q pi/2 + x with q = round(4u), |x| <= pi/4, where the Taylor
-  // series to x^9 (sin) and x^8 (cos) are within 3e-8 of the truth
-  // (remainders x^11/11! and x^10/10!).
-  const float q = std::nearbyint(4.0f * u);
-  const float x = (4.0f * u - q) * (0.5f * kPi);
-  const float x2 = x * x;
-  const float sx = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-  const float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
-  switch (int(q) & 3) {  // rotate by q quarter turns
-    case 0: s = sx; c = cx; break;
-    case 1: s = cx; c = -sx; break;
-    case 2: s = -sx; c = -cx; break;
-    default: s = -cx; c = sx; break;
-  }
-}
-
 vec3 reflect(const vec3& d, const vec3& n) { return d - 2.0f * glm::dot(n, d) * n; }
 
 bool refract(const vec3& d, const vec3& n, float eta, vec3& out) {
