@@ -34,7 +34,7 @@
 # for what carries over to 512x512.
 #
 # Environment knobs: WHISKER_BUILD (build dir, default build/), RES, SEEDS,
-# MAX_SPP, CAT_MAX_SPP, SCENES, CLOSED_RES, THREADS, REF_FACTOR, AGREE_FACTOR,
+# MAX_SPP, CAT_MAX_SPP, SCENES, CLOSED_RES, THREADS, REF_FACTOR, AGREE_FACTOR, BEST_FLAGS,
 # FULLRES_SPP, FORCE_REFS, CONV_OUT (output dir, default $BUILD/convergence).
 set -euo pipefail
 
@@ -67,7 +67,9 @@ no_timer() { shift; "$@"; }
 TIMER=(/usr/bin/time -f "%U %S" -o)
 [ -x /usr/bin/time ] || TIMER=(no_timer)
 REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1)
-BEST_FLAGS=()
+# Whisker best: the defaults, or BEST_FLAGS (e.g. "--split 1" for the
+# single-path estimator the table in docs/PERFORMANCE.md was measured with).
+read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"
 
 log() { printf '\033[1mspeed_vs_error:\033[0m %s\n' "$*" >&2; }
 
@@ -169,7 +171,7 @@ for name in $SCENES; do
     echo '{"exact": true}' >"${ref%.pfm}.json"
   elif [ "$FORCE_REFS" = 1 ] || [ ! -f "$ref" ]; then
     log "reference $name ${RES}x$RES at $REF_SPP spp (sobol, zero cut-off)"
-    render "$scene" "$REF_SPP" "$REF_SEED" "$ref" "${ref%.pfm}.json" --sampler sobol --zero-cutoff on
+    render "$scene" "$REF_SPP" "$REF_SEED" "$ref" "${ref%.pfm}.json" --sampler sobol --zero-cutoff on --split 1
   fi
   if [ "$FORCE_REFS" = 1 ] || [ ! -f "$agree" ]; then
     log "converged report-method image $name ${res}x$res at $AGREE_SPP spp"
