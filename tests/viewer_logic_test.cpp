@@ -52,7 +52,10 @@ TEST(SceneChange, SettingsOnly) {
                     +[](RenderSettings& r) { r.max_depth = 2; },
                     +[](RenderSettings& r) { r.indirect = true; },
                     +[](RenderSettings& r) { r.aa = true; },
-                    +[](RenderSettings& r) { r.target_spp = 64; }}) {
+                    +[](RenderSettings& r) { r.target_spp = 64; },
+                    +[](RenderSettings& r) { r.sampler = SamplerKind::Independent; },
+                    +[](RenderSettings& r) { r.zero_cutoff = false; },
+                    +[](RenderSettings& r) { r.split = {1}; }}) {
     Scene b = a;
     edit(b.settings);
     EXPECT_EQ(classify_change(a, b), SceneChange::Settings);

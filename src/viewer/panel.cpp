@@ -2,7 +2,9 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -152,6 +154,21 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
     ImGui::Checkbox("anti-aliasing", &r.aa);
     ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
     ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
+    {
+      // Splitting: paths per sample from its first and second diffuse hits.
+      static const std::vector<int> kChoices[] = {{1}, {4}, {4, 4}, {8, 4}};
+      static const char* const kNames[] = {"1 (the report's)", "4", "4 x 4 (default)", "8 x 4"};
+      int current = -1;
+      for (int k = 0; k < 4; ++k)
+        if (r.split == kChoices[k]) current = k;
+      const std::string preview =
+          current >= 0 ? kNames[current] : split_to_string(r.split) + " (command line)";
+      if (ImGui::BeginCombo("paths/sample", preview.c_str())) {
+        for (int k = 0; k < 4; ++k)
+          if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
+        ImGui::EndCombo();
+      }
+    }
     if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
     if (r.target_spp == 0) {
       ImGui::SameLine();
