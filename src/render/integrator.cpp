@@ -1,6 +1,5 @@
 #include "render/integrator.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>

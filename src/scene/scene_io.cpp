@@ -1,6 +1,7 @@
 #include "scene/scene_io.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -285,12 +286,12 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       const json& v = s.at("split");
       std::vector<int> split;
       if (v.is_number_integer()) {
-        split.push_back(int(std::clamp<long long>(v.get<long long>(), -1, 1 << 20)));
+        split.push_back(int(std::clamp<long long>(v.get<long long>(), INT_MIN, INT_MAX)));
       } else if (v.is_array()) {
         for (std::size_t i = 0; i < v.size(); ++i) {
           if (!v[i].is_number_integer())
             s.fail(s.field("split") + "[" + std::to_string(i) + "]", "must be an integer");
-          split.push_back(int(std::clamp<long long>(v[i].get<long long>(), -1, 1 << 20)));
+          split.push_back(int(std::clamp<long long>(v[i].get<long long>(), INT_MIN, INT_MAX)));
         }
       } else {
         s.fail(s.field("split"), "must be an integer or an array of integers");
