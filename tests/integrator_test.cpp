@@ -129,6 +129,24 @@ TEST(Optics, CosineSamplingHasTheRightMoments) {
   EXPECT_LT(glm::length(mean) / N, 3e-3);
 }
 
+// The direction is built from an orthonormal basis without a final
+// normalisation: it must be unit to a few ULP for every normal, including
+// the basis' special case n.z = -1 and its neighbourhood.
+TEST(Optics, CosineDirectionsAreUnitWithoutNormalising) {
+  std::mt19937 g(6);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  double worst = 0.0;
+  for (const vec3 n : {glm::normalize(vec3(0.3f, -0.5f, 0.8f)), vec3(0.0f, 0.0f, -1.0f),
+                       glm::normalize(vec3(1e-4f, -2e-4f, -1.0f)), vec3(1.0f, 0.0f, 0.0f),
+                       glm::normalize(vec3(-0.6f, 0.7f, -0.2f))}) {
+    for (int k = 0; k < 100000; ++k) {
+      const glm::dvec3 w(cosine_direction(n, u(g), u(g)));
+      worst = std::max(worst, std::fabs(glm::length(w) - 1.0));
+    }
+  }
+  EXPECT_LT(worst, 1e-6) << worst;
+}
+
 // Fig 1: the white ball lit directly. Every pixel whose camera and shadow
 // rays are not on a silhouette equals I/(4 pi d^2) rho/pi cos, computed here
 // in double with an independent intersection.
