@@ -42,13 +42,17 @@ def fit(xs, ys):
     return my - b * mx, b
 
 
+def log_points(xs, ys):
+    """The logs of the points with both coordinates positive: CPU times of
+    the shortest renders can read 0 (clock granularity)."""
+    xs, ys = zip(*[(a, b) for a, b in zip(xs, ys) if a > 0 and b > 0])
+    return [math.log(v) for v in xs], [math.log(v) for v in ys]
+
+
 def loglog_at(xs, ys, x):
     """y at x on the log-log polyline through (xs, ys) (xs increasing).
     Returns (y, extrapolated)."""
-    # CPU times of the shortest renders can read 0 (clock granularity).
-    xs, ys = zip(*[(a, b) for a, b in zip(xs, ys) if a > 0 and b > 0])
-    lx = [math.log(v) for v in xs]
-    ly = [math.log(v) for v in ys]
+    lx, ly = log_points(xs, ys)
     t = math.log(x)
     for i in range(len(lx) - 1):
         if lx[i] <= t <= lx[i + 1]:
@@ -63,9 +67,7 @@ def loglog_at(xs, ys, x):
 def x_at_y(xs, ys, y):
     """The x where the log-log polyline reaches y, ys decreasing in xs.
     Returns (x, extrapolated)."""
-    xs, ys = zip(*[(a, b) for a, b in zip(xs, ys) if a > 0 and b > 0])
-    lx = [math.log(v) for v in xs]
-    ly = [math.log(v) for v in ys]
+    lx, ly = log_points(xs, ys)
     t = math.log(y)
     for i in range(len(lx) - 1):
         hi, lo = ly[i], ly[i + 1]
