@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/object_bvh.h"
+#include "geometry/offset.h"
 #include "geometry/world.h"
 #include "scene/scene_io.h"
 
@@ -101,4 +102,58 @@ TEST(ObjectBvh, SpheresAndTheCatInOneStructure) {
     EXPECT_NEAR(h.t, t, 1e-5f * t + 1e-6f) << k;
   }
   EXPECT_GT(cat_hits, 1000);
+}
+
+TEST(World, ShadowRaysToTheLightGiveTheSameAnswerWithoutTheWalls) {
+  // occluded_to_light() skips the spheres when no sphere can stand between
+  // the light and a point that near it; it must agree with occluded() at
+  // every surface point a path can reach.
+  const Scene scene = load_scene(resolve_scene("cat"));
+  const World world(scene);
+  const vec3 light = scene.light.position;
+  // The room's walls: the light's power against each is at least
+  // (960.26^2 - 940^2) ~ 196^2, farther than any corner of the room.
+  EXPECT_GT(world.light_clearance2(), 190.0f * 190.0f);
+  std::mt19937 g(8);
+  std::uniform_real_distribution<float> u(-40.0f, 40.0f);
+  int blocked = 0, tested = 0;
+  for (int k = 0; k < 50000; ++k) {
+    const Ray r{vec3(u(g), 0.3f * u(g) + 10.0f, u(g)), random_direction(g)};
+    SurfaceHit h;
+    if (!world.intersect(r, h)) continue;
+    const vec3 ng = glm::dot(h.ng, r.d) < 0.0f ? h.ng : -h.ng;
+    const vec3 to = light - h.p;
+    if (glm::dot(ng, to) <= 0.0f) continue;
+    const Ray shadow = spawn_shadow_ray(h.p, ng, light);
+    const float d2 = glm::dot(to, to);
+    ASSERT_LT(d2, world.light_clearance2()) << k;  // the fast path is the one taken
+    const bool full = world.occluded(shadow);
+    ASSERT_EQ(world.occluded_to_light(shadow, light, d2), full) << k;
+    blocked += full;
+    ++tested;
+  }
+  EXPECT_GT(tested, 20000);
+  EXPECT_GT(blocked, 1000);  // the cat's shadow is in the sample
+  // Another light position than the one the World was built for: no shortcut.
+  EXPECT_TRUE(world.occluded_to_light(Ray{vec3(0.0f, 50.0f, 0.0f), vec3(0.0f, 1.0f, 0.0f), 0.0f, 50.0f},
+                                      vec3(0.0f, 100.0f, 0.0f), 1.0f));
+}
+
+TEST(World, ShadowRaysFromInsideAGlassBallStillSeeTheGlass) {
+  // A diffuse ball inside the glass ball of the three-ball scene: its points
+  // lie inside a sphere, where only the nearest-distance bound holds.
+  Scene scene = load_scene(resolve_scene("three-balls"));
+  SphereObject inner;
+  inner.center = vec3(0.0f);
+  inner.radius = 3.0f;
+  scene.spheres.push_back(inner);
+  const World world(scene);
+  const vec3 light = scene.light.position;
+  const vec3 p(0.0f, 3.0f, 0.0f), n(0.0f, 1.0f, 0.0f);
+  const Ray shadow = spawn_shadow_ray(p, n, light);
+  const float d2 = glm::dot(light - p, light - p);
+  ASSERT_TRUE(world.occluded(shadow));  // the glass shell is in the way
+  EXPECT_TRUE(world.occluded_to_light(shadow, light, d2));
+  // The glass ball's nearest point is |L - c| - r = 45.8 - 10 from the light.
+  EXPECT_LT(world.light_clearance2(), 36.0f * 36.0f);
 }

@@ -1,6 +1,8 @@
 #include "geometry/world.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 #include <glm/geometric.hpp>
 
@@ -9,6 +11,7 @@
 namespace whisker {
 
 World::World(const Scene& scene, const World* reuse) {
+  set_light_clearance(scene);
   for (const auto& s : scene.spheres) {
     if (s.material.kind == MaterialKind::HollowGlass) {
       // Report section 2: a glass ball holding an air bubble whose normal is inverted.
@@ -69,6 +72,27 @@ World::World(const Scene& scene, const World* reuse) {
   data->bvh = Bvh::build(std::move(tris), scene.settings.accel);
   mesh_ = std::move(data);
   objects_ = ObjectBvh(spheres_, mesh_->bounds);
+}
+
+void World::set_light_clearance(const Scene& scene) {
+  double clear = kInf;
+  for (const auto& s : scene.spheres) {
+    const glm::dvec3 f = glm::dvec3(scene.light.position) - glm::dvec3(s.center);
+    const double d2 = glm::dot(f, f), r = double(s.radius);
+    const glm::dvec3 fc = glm::dvec3(scene.camera.position) - glm::dvec3(s.center);
+    // Paths reach a point inside a sphere only through glass (the others
+    // send every ray back to the side it came from) or if the camera is
+    // inside. Then only the near root t1 >= |L - c| - r bounds the segment.
+    // (A hollow sphere's inner shell lies inside its outer one, which bounds both.)
+    const bool outside = s.material.kind != MaterialKind::Glass &&
+                         s.material.kind != MaterialKind::HollowGlass &&
+                         glm::dot(fc, fc) > r * r;
+    const double near = std::max(0.0, std::sqrt(d2) - r);
+    clear = std::min(clear, outside ? std::max(0.0, d2 - r * r) : near * near);
+  }
+  // |p - L|^2 is rounded in float (a few ULP); 1e-3 covers it many times over.
+  light_clear2_ = float(clear * (1.0 - 1e-3));
+  light_ = scene.light.position;
 }
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {

@@ -42,7 +42,18 @@ class World {
   }
   void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   bool occluded(const Ray& ray) const;
+  // The same for a shadow ray from a hit point towards a point light at
+  // `light`, dist2 away: when no sphere can stand between them (see
+  // light_clear2_) only the triangles are tested. Same answer as occluded().
+  bool occluded_to_light(const Ray& ray, const vec3& light, float dist2) const {
+    if (dist2 < light_clear2_ && light == light_)
+      return mesh_ && mesh_->bvh.occluded(ray);
+    return occluded(ray);
+  }
 
+  // The squared distance from the light within which occluded_to_light()
+  // skips the spheres (see light_clear2_).
+  float light_clearance2() const { return light_clear2_; }
   std::size_t sphere_count() const { return spheres_.size(); }
   std::size_t triangle_count() const { return mesh_ ? mesh_->bvh.triangle_count() : 0; }
   const Bvh* bvh() const { return mesh_ ? &mesh_->bvh : nullptr; }
@@ -58,12 +69,24 @@ class World {
     AccelKind accel = AccelKind::Sah;
     Box3 bounds;  // of all triangles
   };
+  void set_light_clearance(const Scene& scene);
+
   std::vector<Sphere> spheres_;
   ObjectBvh objects_;  // spheres and the mesh, one structure
   std::vector<Material> sphere_material_;
   std::vector<Material> mesh_material_;
   std::vector<bool> mesh_vertex_normals_;
   std::shared_ptr<const MeshData> mesh_;
+  // A segment from the light L to a point p outside a sphere (centre c,
+  // radius r) that passes through the sphere leaves it at distance
+  // t2 >= sqrt(|L - c|^2 - r^2) from L (the product of the two roots is the
+  // power of L, |L - c|^2 - r^2, and t1 <= t2), so |p - L| >= t2 then.
+  // This is the smallest such bound over all spheres (squared, with a margin
+  // for float rounding); 0 if the light is inside or on a sphere. For the
+  // report's room it is about 196^2, and no point of the room is that far
+  // from the light: shadow rays there never test the six wall spheres.
+  float light_clear2_ = 0.0f;
+  vec3 light_{0.0f};  // the scene light it was computed for
 };
 
 }  // namespace whisker

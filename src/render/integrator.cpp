@@ -11,14 +11,28 @@ namespace whisker {
 namespace {
 constexpr float kPi = 3.14159265358979323846f;
 
-// An orthonormal basis around unit n (Duff et al., "Building an Orthonormal
-// Basis, Revisited", JCGT 2017).
-void basis(const vec3& n, vec3& b1, vec3& b2) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float b = n.x * n.y * a;
-  b1 = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  b2 = vec3(b, sign + n.y * n.y * a, -n.y);
+// An orthonormal basis (b1, b2, n) around unit n (Duff et al., "Building an
+// Orthonormal Basis, Revisited", JCGT 2017). Built once per shading point:
+// its division would otherwise be repeated for every split branch.
+struct Frame {
+  vec3 b1, b2, n;
+  explicit Frame(const vec3& normal) : n(normal) {
+    const float sign = std::copysign(1.0f, n.z);
+    const float a = -1.0f / (sign + n.z);
+    const float b = n.x * n.y * a;
+    b1 = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    b2 = vec3(b, sign + n.y * n.y * a, -n.y);
+  }
+};
+
+// Cosine-weighted hemisphere (report section 3, Scene::random_cos):
+// x = cos(2 pi u1) sqrt(1 - u2), y = sin(2 pi u1) sqrt(1 - u2), z = sqrt(u2).
+// b1, b2, n are orthonormal, so the result is unit to rounding (a few ULP).
+inline vec3 cosine_direction(const Frame& f, float u1, float u2) {
+  const float r = std::sqrt(1.0f - u2);
+  float s, c;
+  sincos_turn(u1, s, c);
+  return r * c * f.b1 + r * s * f.b2 + std::sqrt(u2) * f.n;
 }
 }  // namespace
 
@@ -42,15 +56,7 @@ float schlick(float cos_i, float n1, float n2) {
 }
 
 vec3 cosine_direction(const vec3& n, float u1, float u2) {
-  // Cosine-weighted hemisphere (report section 3, Scene::random_cos):
-  // x = cos(2 pi u1) sqrt(1 - u2), y = sin(2 pi u1) sqrt(1 - u2), z = sqrt(u2).
-  // b1, b2, n are orthonormal, so the result is unit to rounding (a few ULP).
-  const float r = std::sqrt(1.0f - u2);
-  float s, c;
-  sincos_turn(u1, s, c);
-  vec3 b1, b2;
-  basis(n, b1, b2);
-  return r * c * b1 + r * s * b2 + std::sqrt(u2) * n;
+  return cosine_direction(Frame(n), u1, u2);
 }
 
 namespace {
@@ -92,7 +98,7 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
         // The geometric test keeps vertex normals from lighting the far side.
         if (cos_s > 0.0f && glm::dot(ng, wi) > 0.0f) {
           ++stats.rays;
-          if (!world.occluded(spawn_shadow_ray(h.p, ng, light.position)))
+          if (!world.occluded_to_light(spawn_shadow_ray(h.p, ng, light.position), light.position, d2))
             L += beta * (light.intensity * cos_s / (4.0f * kPi * kPi * d2));
         }
         if (!settings.indirect) return L;
@@ -103,20 +109,21 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
                               ? settings.split[std::size_t(diffuse_hits)]
                               : 1;
         ++diffuse_hits;
+        const Frame frame(ns);
         if (split > 1) {
           vec3 sum(0.0f);
           for (int k = 0; k < split; ++k) {
             Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
             float u1, u2;
             branch.get2d(u1, u2);
-            const Ray r = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
+            const Ray r = spawn_ray(h.p, ng, cosine_direction(frame, u1, u2));
             sum += trace(world, light, settings, r, beta, depth + 1, diffuse_hits, branch, stats);
           }
           return L + sum / float(split);
         }
         float u1, u2;
         sampler.get2d(u1, u2);
-        ray = spawn_ray(h.p, ng, cosine_direction(ns, u1, u2));
+        ray = spawn_ray(h.p, ng, cosine_direction(frame, u1, u2));
         break;
       }
       case MaterialKind::Mirror:

@@ -104,7 +104,40 @@ Sampler Sampler::branch(std::uint32_t k, std::uint32_t count) {
   return b;
 }
 
+namespace {
+
+// The scrambling seeds depend only on the pixel's key and the dimension, not
+// on the sample: one pixel's samples (consecutive in a tile) share them. Each
+// thread keeps the last pixel's seeds, so the hashes run once per pixel
+// instead of three times per 2D request.
+constexpr std::uint32_t kCachedPairs = 16;
+struct PixelSeeds {
+  std::uint32_t key = 0;
+  bool valid = false;
+  std::uint32_t first[4];              // dimensions 0-3 (the 4D point)
+  std::uint32_t pair[kCachedPairs][3];  // padded pair d: shuffle, x, y
+};
+
+void pair_seeds(std::uint32_t key, std::uint32_t dim, std::uint32_t out[3]) {
+  out[0] = hash32(key, dim);
+  out[1] = hash32(out[0], 1);
+  out[2] = hash32(out[0], 2);
+}
+
+const PixelSeeds& pixel_seeds(std::uint32_t key) {
+  thread_local PixelSeeds cache;
+  if (cache.valid && cache.key == key) return cache;
+  cache.key = key;
+  cache.valid = true;
+  for (std::uint32_t k = 0; k < 4; ++k) cache.first[k] = hash32(key, 0xd0 + k);
+  for (std::uint32_t d = 0; d < kCachedPairs; ++d) pair_seeds(key, d, cache.pair[d]);
+  return cache;
+}
+
+}  // namespace
+
 void Sampler::sobol2d(float& u, float& v) {
+  const PixelSeeds& seeds = pixel_seeds(key_);
   if (dim_ < 2) {
     // The first four dimensions (pixel jitter and the first bounce, or the
     // first Fresnel choice) are one 4D Sobol point: the index is shuffled
@@ -113,24 +146,30 @@ void Sampler::sobol2d(float& u, float& v) {
     const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, key_));
     std::uint32_t x, y;
     if (dim_ == 0) {
-      x = reverse_bits(laine_karras(i, hash32(key_, 0xd0)));
-      y = owen_scramble(kDim1(i), hash32(key_, 0xd1));
+      x = reverse_bits(laine_karras(i, seeds.first[0]));
+      y = owen_scramble(kDim1(i), seeds.first[1]);
     } else {
-      x = owen_scramble(kDim2(i), hash32(key_, 0xd2));
-      y = owen_scramble(kDim3(i), hash32(key_, 0xd3));
+      x = owen_scramble(kDim2(i), seeds.first[2]);
+      y = owen_scramble(kDim3(i), seeds.first[3]);
     }
     ++dim_;
     u = float(x >> 8) * 0x1p-24f;
     v = float(y >> 8) * 0x1p-24f;
     return;
   }
-  const std::uint32_t pair_key = hash32(key_, dim_++);
+  std::uint32_t computed[3];
+  const std::uint32_t* pair = seeds.pair[dim_ % kCachedPairs];
+  if (dim_ >= kCachedPairs) {
+    pair_seeds(key_, dim_, computed);
+    pair = computed;
+  }
+  ++dim_;
   // Shuffle the order of the points (Burley section 4): i = owen(index)...
-  const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, pair_key));
+  const std::uint32_t i = reverse_bits(laine_karras(reversed_index_, pair[0]));
   // ...then scramble each coordinate with its own seed. Dimension 0 is the
   // bit-reversed index, so owen(reverse(i)) = reverse(lk(i)).
-  const std::uint32_t x = reverse_bits(laine_karras(i, hash32(pair_key, 1)));
-  const std::uint32_t y = owen_scramble(sobol_dim1(i), hash32(pair_key, 2));
+  const std::uint32_t x = reverse_bits(laine_karras(i, pair[1]));
+  const std::uint32_t y = owen_scramble(sobol_dim1(i), pair[2]);
   // Top 24 bits: in [0, 1), never 1.
   u = float(x >> 8) * 0x1p-24f;
   v = float(y >> 8) * 0x1p-24f;
