@@ -143,7 +143,6 @@ struct RayAvx {
   __m256 okx, oky, okz, sx, sy, sz;
 
   explicit RayAvx(const Ray& r) {
-    const WatertightRay w(r);
     const float inv[3] = {safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)};
     ix = _mm256_set1_ps(inv[0]);
     iy = _mm256_set1_ps(inv[1]);
@@ -167,6 +166,16 @@ struct RayAvx {
     far_x = near_x < 24 ? near_x + 24 : near_x - 24;
     far_y = near_y < 24 ? near_y + 24 : near_y - 24;
     far_z = near_z < 24 ? near_z + 24 : near_z - 24;
+  }
+
+  // The triangle test's part, made only once a leaf is reached: most rays
+  // in the report's room never come near the mesh, and the root's box test
+  // turns them away before this setup (and its division) would be paid.
+  bool triangles_ready = false;
+  void prepare_triangles(const Ray& r) {
+    if (triangles_ready) return;
+    triangles_ready = true;
+    const WatertightRay w(r);
     kx = w.kx;
     ky = w.ky;
     kz = w.kz;
@@ -299,10 +308,11 @@ inline std::uint32_t leaf_packets(std::uint32_t ref) { return ((ref >> 24) & 0x7
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
   if (packets.empty()) return false;
-  const RayAvx r(ray);
+  RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
   Closest c(std::min(ray.tmax, hit.t));
   if (nodes.empty()) {  // brute force: every packet
+    r.prepare_triangles(ray);
     c.packets(r, packets.data(), packets.size(), tmin);
     return c.store(hit);
   }
@@ -345,6 +355,7 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
         continue;
       }
     } else {
+      r.prepare_triangles(ray);
       c.packets(r, &packets[leaf_first(ref)], leaf_packets(ref), tmin);
     }
     // Pop the next node that may still hold a closer hit.
@@ -363,10 +374,11 @@ done:
 
 bool WideBvh::occluded(const Ray& ray) const {
   if (packets.empty()) return false;
-  const RayAvx r(ray);
+  RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
   const __m256 tmax = _mm256_set1_ps(ray.tmax);
   if (nodes.empty()) {  // brute force: every packet
+    r.prepare_triangles(ray);
     for (const TriPacket& p : packets) {
       __m256 t, e1, e2, inv;
       if (tri_test(r, p, tmin, tmax, t, e1, e2, inv)) return true;
@@ -385,6 +397,7 @@ bool WideBvh::occluded(const Ray& ray) const {
         stack[sp++] = n.child[__builtin_ctz(mask)];
     } else {
       const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
+      r.prepare_triangles(ray);
       for (std::uint32_t p = first; p < first + count; ++p) {
         __m256 t, e1, e2, inv;
         if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;

@@ -38,15 +38,18 @@ inline Ray spawn_ray(const vec3& p, const vec3& ng, const vec3& d) {
   return Ray{offset_ray_origin(p, n), d, 0.0f, kInf};
 }
 
-// A shadow ray from p towards the point light at `target`; it stops just short
-// of the light (a light is never an occluder).
-inline Ray spawn_shadow_ray(const vec3& p, const vec3& ng, const vec3& target) {
-  const vec3 to = target - p;
-  const float dist = glm::length(to);
-  const vec3 d = to / dist;
+// A shadow ray from p towards the point light at `target`, d the unit
+// direction from p to it; it stops just short of the light (a light is never
+// an occluder): at the point of the line nearest the light, which the offset
+// origin moves by a few ULPs at most.
+inline Ray spawn_shadow_ray(const vec3& p, const vec3& ng, const vec3& target, const vec3& d) {
   const vec3 n = glm::dot(ng, d) >= 0.0f ? ng : -ng;
   const vec3 o = offset_ray_origin(p, n);
-  return Ray{o, d, 0.0f, glm::length(target - o) * (1.0f - 1e-5f)};
+  return Ray{o, d, 0.0f, glm::dot(target - o, d) * (1.0f - 1e-5f)};
+}
+
+inline Ray spawn_shadow_ray(const vec3& p, const vec3& ng, const vec3& target) {
+  return spawn_shadow_ray(p, ng, target, glm::normalize(target - p));
 }
 
 }  // namespace whisker

@@ -66,8 +66,13 @@ namespace {
 // d-th diffuse hit, settings.split[d] continuations are traced and averaged
 // (splitting: each is an unbiased estimate of the same integral, so their
 // mean is too, with less variance).
-vec3 trace(const World& world, const PointLight& light, const RenderSettings& settings, Ray ray,
-           vec3 beta, int first_depth, int diffuse_hits, Sampler& sampler, PathStats& stats) {
+// The ray comes as origin and direction (tmin 0, tmax infinite): vec3s
+// travel in registers, where a Ray passed by value is stored in pieces and
+// read back whole, a store-forwarding stall on every split branch.
+vec3 trace(const World& world, const PointLight& light, const RenderSettings& settings, vec3 o,
+           vec3 d, vec3 beta, int first_depth, int diffuse_hits, Sampler& sampler,
+           PathStats& stats) {
+  Ray ray{o, d, 0.0f, kInf};
   vec3 L(0.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
   for (int depth = first_depth; depth <= settings.max_depth; ++depth) {
@@ -117,7 +122,8 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
             float u1, u2;
             branch.get2d(u1, u2);
             const Ray r = spawn_ray(h.p, ng, cosine_direction(frame, u1, u2));
-            sum += trace(world, light, settings, r, beta, depth + 1, diffuse_hits, branch, stats);
+            sum += trace(world, light, settings, r.o, r.d, beta, depth + 1, diffuse_hits, branch,
+                         stats);
           }
           return L + sum / float(split);
         }
@@ -155,7 +161,7 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
 
 vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
               Ray ray, Sampler& sampler, PathStats& stats) {
-  return trace(world, light, settings, ray, vec3(1.0f), 0, 0, sampler, stats);
+  return trace(world, light, settings, ray.o, ray.d, vec3(1.0f), 0, 0, sampler, stats);
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,

@@ -19,7 +19,8 @@ struct PathStats {
 };
 
 // Radiance arriving along `ray` (light intensity applied), with at most
-// settings.max_depth hits after the first.
+// settings.max_depth hits after the first. The ray is unbounded: only its
+// origin and direction are used.
 vec3 radiance(const World& world, const PointLight& light, const RenderSettings& settings,
               Ray ray, Sampler& sampler, PathStats& stats);
 
