@@ -41,10 +41,35 @@ inline float intersect_sphere(const Sphere& s, const Ray& r) {
 }
 
 // The float test above picks the closest sphere; for that one sphere the
-// distance is solved again in double (same stable form), because at grazing
-// angles on the radius-990 floor float loses up to ~1e-4 of t, which would
-// shift shading positions. One double solve per shaded hit costs nothing.
+// distance is solved again in double, because at grazing angles on the
+// radius-990 floor float loses up to ~1e-4 of t, which would shift shading
+// positions.
+//
+// First one Newton step from the float root on g(t) = |f + t d|^2 - r^2
+// (f = o - c), in double: g'(t) = 2 (f + t d).d, and since g'' = 2 |d|^2 the
+// error after the step is e^2 |d|^2 / |g'| for a start e away from the root,
+// about step^2 |d|^2 / |g'|. When that bound is below 1e-9 of t (float rounds
+// at 6e-8) the step is the answer: one division where the quadratic takes
+// two and a square root. Otherwise (grazing rays, where g' is small, or a
+// poor start) the stable quadratic below decides.
+inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float);
 inline double refine_sphere_t(const Sphere& s, const Ray& r, float t_float) {
+  const glm::dvec3 f = glm::dvec3(r.o) - glm::dvec3(s.center);
+  const glm::dvec3 d(r.d);
+  const double t = t_float;
+  const glm::dvec3 p = f + t * d;
+  const double r2 = double(s.radius) * double(s.radius);
+  const double g = glm::dot(p, p) - r2;
+  const double gp = 2.0 * glm::dot(p, d);
+  const double step = g / gp;
+  const double t1 = t - step;
+  if (step * step * glm::dot(d, d) <= 1e-9 * std::fabs(gp) * std::fabs(t1)) return t1;
+  return solve_sphere_t(s, r, t_float);
+}
+
+// The double-precision root nearest t_float by the stable quadratic (same
+// form as intersect_sphere()).
+inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float) {
   const glm::dvec3 f = glm::dvec3(r.o) - glm::dvec3(s.center);
   const glm::dvec3 d(r.d);
   const double inv_len2 = 1.0 / glm::dot(d, d);  // d is unit in float, not in double
