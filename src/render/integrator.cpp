@@ -98,13 +98,15 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
         // Direct light, report section 2: I/(4 pi d^2) * rho/pi * <N, w_i> * V.
         const vec3 to_light = light.position - h.p;
         const float d2 = glm::dot(to_light, to_light);
-        const vec3 wi = to_light / std::sqrt(d2);
+        const float inv_d = 1.0f / std::sqrt(d2);
+        const vec3 wi = to_light * inv_d;
         const float cos_s = glm::dot(ns, wi);
         // The geometric test keeps vertex normals from lighting the far side.
         if (cos_s > 0.0f && glm::dot(ng, wi) > 0.0f) {
           ++stats.rays;
-          if (!world.occluded_to_light(spawn_shadow_ray(h.p, ng, light.position), light.position, d2))
-            L += beta * (light.intensity * cos_s / (4.0f * kPi * kPi * d2));
+          const Ray shadow = spawn_shadow_ray(h.p, ng, light.position, wi);
+          if (!world.occluded_to_light(shadow, light.position, d2))
+            L += beta * (light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi)));
         }
         if (!settings.indirect) return L;
         // Indirect, report section 3: cosine sampling makes the estimator rho * L_in
