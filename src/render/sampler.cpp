@@ -54,6 +54,18 @@ struct SobolMatrix {
         for (int k = 0; k < 8; ++k)
           if (x >> k & 1) byte[b][x] ^= v[8 * b + k];
   }
+  // The same matrix with its outputs bit-reversed (reversal is linear, so
+  // it applies entry by entry): owen_scramble reverses the point first.
+  constexpr SobolMatrix reversed() const {
+    SobolMatrix r = *this;
+    for (auto& row : r.byte)
+      for (auto& e : row) {
+        std::uint32_t y = 0;
+        for (int k = 0; k < 32; ++k) y |= (e >> k & 1u) << (31 - k);
+        e = y;
+      }
+    return r;
+  }
   constexpr std::uint32_t operator()(std::uint32_t i) const {
     return byte[0][i & 255] ^ byte[1][i >> 8 & 255] ^ byte[2][i >> 16 & 255] ^ byte[3][i >> 24];
   }
@@ -62,6 +74,8 @@ constexpr std::uint32_t kM1[3] = {1, 0, 0}, kM2[3] = {1, 3, 0}, kM3[3] = {1, 3, 
 constexpr SobolMatrix kDim1(1, 0, kM1);  // x + 1
 constexpr SobolMatrix kDim2(2, 1, kM2);  // x^2 + x + 1
 constexpr SobolMatrix kDim3(3, 1, kM3);  // x^3 + x + 1
+constexpr SobolMatrix kDim1R = kDim1.reversed(), kDim2R = kDim2.reversed(),
+                      kDim3R = kDim3.reversed();
 
 // Laine-Karras style hash that permutes bits only towards higher ones,
 // with Burley's constants (JCGT 2020, listing 2): applied to reversed bits it
@@ -80,6 +94,13 @@ std::uint32_t laine_karras(std::uint32_t x, std::uint32_t seed) {
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed) {
   return reverse_bits(laine_karras(reverse_bits(v), seed));
 }
+
+namespace {
+// owen_scramble(m(i), seed) with the reversal of m folded into its table.
+std::uint32_t owen_scramble_reversed(std::uint32_t reversed_v, std::uint32_t seed) {
+  return reverse_bits(laine_karras(reversed_v, seed));
+}
+}  // namespace
 
 std::uint32_t sobol_dim1(std::uint32_t index) { return kDim1(index); }
 
@@ -147,10 +168,10 @@ void Sampler::sobol2d(float& u, float& v) {
     std::uint32_t x, y;
     if (dim_ == 0) {
       x = reverse_bits(laine_karras(i, seeds.first[0]));
-      y = owen_scramble(kDim1(i), seeds.first[1]);
+      y = owen_scramble_reversed(kDim1R(i), seeds.first[1]);
     } else {
-      x = owen_scramble(kDim2(i), seeds.first[2]);
-      y = owen_scramble(kDim3(i), seeds.first[3]);
+      x = owen_scramble_reversed(kDim2R(i), seeds.first[2]);
+      y = owen_scramble_reversed(kDim3R(i), seeds.first[3]);
     }
     ++dim_;
     u = float(x >> 8) * 0x1p-24f;
@@ -169,7 +190,7 @@ void Sampler::sobol2d(float& u, float& v) {
   // ...then scramble each coordinate with its own seed. Dimension 0 is the
   // bit-reversed index, so owen(reverse(i)) = reverse(lk(i)).
   const std::uint32_t x = reverse_bits(laine_karras(i, pair[1]));
-  const std::uint32_t y = owen_scramble(sobol_dim1(i), pair[2]);
+  const std::uint32_t y = owen_scramble_reversed(kDim1R(i), pair[2]);
   // Top 24 bits: in [0, 1), never 1.
   u = float(x >> 8) * 0x1p-24f;
   v = float(y >> 8) * 0x1p-24f;
