@@ -139,6 +139,8 @@ TEST(Headless, BadInputExitsTwoWithAMessage) {
       {"--headless --scene three-balls --split 4,x" + out, "--split 4,x: expected integers separated by commas"},
       {"--headless --scene three-balls --split 4,0" + out, "--split 4,0: factors must be in [1, 64], got 0"},
       {"--headless --scene three-balls --split 64,64,64" + out, "--split 64,64,64: the factors' product"},
+      {"--headless --scene three-balls --split-weights 1,0,1" + out, "--split-weights 1,0,1: expected three numbers r,g,b in [0.01, 1]"},
+      {"--headless --scene three-balls --split-weights 1,1" + out, "--split-weights 1,1: expected three numbers"},
       {"--headless --scene three-balls --spp 65536 --frames 65536" + out, "more than 2^30 samples per pixel"},
       {"--headless --scene three-balls", "needs at least one of --out"},
   };

@@ -24,10 +24,10 @@ constexpr double kPi = 3.14159265358979323846;
 
 // A closed diffuse sphere of radius R and grey albedo rho, the camera inside
 // looking at the far wall.
-Scene closed_sphere(float rho, vec3 light, int depth, int spp, int size) {
+Scene closed_sphere(vec3 rho, vec3 light, int depth, int spp, int size) {
   Scene s;
   s.name = "closed-sphere";
-  s.spheres.push_back({"shell", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, vec3(rho)}});
+  s.spheres.push_back({"shell", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, rho}});
   s.light = {light, 1000.0f};
   s.camera.position = vec3(0.0f, 0.0f, 5.0f);
   s.camera.look_at = vec3(0.0f, 0.0f, -10.0f);
@@ -38,6 +38,9 @@ Scene closed_sphere(float rho, vec3 light, int depth, int spp, int size) {
   s.settings.spp = spp;
   s.settings.target_spp = spp;
   return s;
+}
+Scene closed_sphere(float rho, vec3 light, int depth, int spp, int size) {
+  return closed_sphere(vec3(rho), light, depth, spp, size);
 }
 
 }  // namespace
@@ -236,6 +239,30 @@ TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
   }
 }
 
+// The same with a coloured shell and channel weights that halve the split
+// (split_weights): paths carrying red and green split round(3 * 0.5) = 2,
+// then round(2 * 0.5) = 1 ways; every channel keeps its closed form, and
+// blue (albedo 0) stays exactly 0.
+TEST(IndirectLight, WeightedSplitKeepsEveryChannelsClosedForm) {
+  const glm::dvec3 rho(0.6, 0.3, 0.0);
+  const double I = 1000.0, R = 10.0;
+  for (int depth = 0; depth <= 4; ++depth) {
+    Scene scene = closed_sphere(vec3(rho), vec3(0.0f), depth, 16, 4);
+    scene.settings.split = {3, 2};
+    scene.settings.split_weights = vec3(0.5f, 0.25f, 1.0f);
+    ASSERT_EQ(weighted_split(3, vec3(rho), scene.settings.split_weights), 2);
+    const Snapshot s = render(scene);
+    const int B = depth + 1;
+    for (int c = 0; c < 3; ++c) {
+      const double expect =
+          rho[c] * I / (kPi * R * R) * (1 - std::pow(rho[c], B)) / (1 - rho[c]) / (4 * kPi);
+      for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 4; ++x)
+          ASSERT_NEAR(s.mean(x, y, c), expect, 2e-5 * expect) << depth << " channel " << c;
+    }
+  }
+}
+
 // Off-centre light c: at the first hit y,
 //   L(y) = rho/pi [I cos/|c-y|^2 + (I/R^2) rho (1 - rho^(B-1))/(1 - rho)] * 1/(4 pi)
 // (a cosine-sampled direction inside a sphere lands uniformly on its area).
@@ -245,6 +272,7 @@ TEST(IndirectLight, CentredLightInClosedSphereAtEveryDepth) {
 struct OffCentreCase {
   std::vector<int> split;
   SamplerKind sampler;
+  vec3 split_weights{1.0f};
   int paths() const {
     int n = 1;
     for (int k : split) n *= k;
@@ -256,10 +284,12 @@ class OffCentre : public ::testing::TestWithParam<OffCentreCase> {};
 INSTANTIATE_TEST_SUITE_P(Splits, OffCentre,
                          ::testing::Values(OffCentreCase{{1}, SamplerKind::Sobol},
                                            OffCentreCase{{4, 4}, SamplerKind::Sobol},
-                                           OffCentreCase{{3, 2}, SamplerKind::Independent}),
+                                           OffCentreCase{{3, 2}, SamplerKind::Independent},
+                                           OffCentreCase{{4, 4}, SamplerKind::Sobol, vec3(0.5f)}),
                          [](const auto& info) {
                            std::string name = to_string(info.param.sampler);
                            for (int k : info.param.split) name += "Split" + std::to_string(k);
+                           if (info.param.split_weights != vec3(1.0f)) name += "Weighted";
                            return name;
                          });
 
@@ -271,6 +301,7 @@ TEST_P(OffCentre, LightInClosedSphere) {
     Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
     scene.settings.split = GetParam().split;
     scene.settings.sampler = GetParam().sampler;
+    scene.settings.split_weights = GetParam().split_weights;
     const Snapshot s = render(scene);
     const int B = depth + 1;
     const CameraFrame cam(scene.camera);

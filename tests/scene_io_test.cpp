@@ -66,7 +66,8 @@ TEST(SceneFiles, BundledScenesHoldTheReportsNumbers) {
 }
 
 TEST(SceneFiles, RoundTripThroughJson) {
-  const Scene a = load_scene(resolve_scene("three-balls-fresnel"));
+  Scene a = load_scene(resolve_scene("three-balls-fresnel"));
+  a.settings.split_weights = vec3(1.0f, 0.5f, 0.25f);
   const Scene b = parse_scene(scene_to_json(a), "roundtrip.json");
   ASSERT_EQ(a.spheres.size(), b.spheres.size());
   for (std::size_t k = 0; k < a.spheres.size(); ++k) {
@@ -75,7 +76,23 @@ TEST(SceneFiles, RoundTripThroughJson) {
     EXPECT_EQ(a.spheres[k].material.kind, b.spheres[k].material.kind);
   }
   EXPECT_EQ(a.settings.fresnel, b.settings.fresnel);
+  EXPECT_EQ(a.settings.split_weights, b.settings.split_weights);
   EXPECT_EQ(a.light.position, b.light.position);
+}
+
+TEST(Split, WeightsScaleByTheMostWeightedCarriedChannel) {
+  const vec3 w(1.0f, 0.5f, 0.25f);
+  EXPECT_EQ(weighted_split(4, vec3(1, 1, 1), w), 4);        // white: the largest weight
+  EXPECT_EQ(weighted_split(4, vec3(0, 1, 0), w), 2);        // green only
+  EXPECT_EQ(weighted_split(4, vec3(0, 0, 1), w), 1);        // blue only: 4 * 0.25
+  EXPECT_EQ(weighted_split(4, vec3(0, 0.3f, 0.7f), w), 2);  // cyan: green's 0.5 wins
+  EXPECT_EQ(weighted_split(2, vec3(0, 0, 1), w), 1);        // 0.5 rounds up to 1
+  EXPECT_EQ(weighted_split(3, vec3(0, 0, 1), vec3(0.01f)), 1);  // never below 1
+  EXPECT_EQ(weighted_split(6, vec3(0, 1, 0), w), 3);
+  EXPECT_EQ(weighted_split(4, vec3(1, 0, 0), vec3(1.0f)), 4);   // all 1: the plain factor
+  // The cat scene's file: paths that carry green but neither red nor blue split half.
+  const Scene cat = load_scene(resolve_scene("cat"));
+  EXPECT_EQ(cat.settings.split_weights, vec3(1.0f, 0.5f, 1.0f));
 }
 
 TEST(SceneFiles, SyntaxErrorNamesLineAndColumn) {
@@ -104,6 +121,9 @@ TEST(SceneFiles, BadFieldsAreNamed) {
       {R"({"settings": {"split": [4, "4"]}})", "bad.json: settings.split[1]: must be an integer"},
       {R"({"settings": {"split": [64, 64, 2]}})", "bad.json: settings.split: the factors' product"},
       {R"({"settings": {"split": 4.5}})", "bad.json: settings.split: must be an integer or an array"},
+      {R"({"settings": {"split_weights": [1, 0, 1]}})", "bad.json: settings.split_weights[1]: must be in [0.01, 1]"},
+      {R"({"settings": {"split_weights": [1, 1]}})", "bad.json: settings.split_weights: must be an array of 3 numbers"},
+      {R"({"settings": {"split_weights": [1, 1, 2]}})", "bad.json: settings.split_weights[2]: must be in [0.01, 1]"},
       {R"({"spheres": {}})", "bad.json: spheres: must be an array"},
       {R"({"spheres": [{"center": [0,0,0], "radius": -1, "material": {"type": "diffuse"}}]})",
        "bad.json: spheres[0].radius: must be positive"},

@@ -83,7 +83,8 @@ int run_headless(const HeadlessOptions& o) {
         {"settings",
          {{"spp_per_pass", s.spp}, {"max_depth", s.max_depth}, {"indirect", s.indirect},
           {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)},
-          {"sampler", to_string(s.sampler)}, {"zero_cutoff", s.zero_cutoff}, {"split", s.split}}}};
+          {"sampler", to_string(s.sampler)}, {"zero_cutoff", s.zero_cutoff}, {"split", s.split},
+          {"split_weights", {s.split_weights.x, s.split_weights.y, s.split_weights.z}}}}};
     write_file_atomically(o.stats_json, [&](const std::string& tmp) {
       std::ofstream out(tmp);
       out << j.dump(2) << "\n";

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <glm/vector_relational.hpp>
 #include <unistd.h>
 
 #include "app/headless.h"
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
   std::optional<int> spp, depth, target_spp;
   int threads = 0;
   std::optional<std::uint64_t> seed;
-  std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff, split;
+  std::string indirect, fresnel, aa, light, accel, sampler, zero_cutoff, split, split_weights;
   std::optional<float> intensity;
   std::string out_png, out_float, stats_json, screenshot;
   int edit_after = -1;
@@ -92,6 +93,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"on", "off"}));
   app.add_option("--split", split,
                  "Indirect paths leaving the 1st, 2nd, ... diffuse hit, e.g. 4,4 (1 = the report's)");
+  app.add_option("--split-weights", split_weights,
+                 "Per channel r,g,b in [0.01, 1]: paths that carry only low-weight channels split less");
   app.add_option("--light", light, "Light position x,y,z");
   app.add_option("--intensity", intensity, "Light intensity")->check(CLI::Range(0.0, 1e30));
   app.add_option("--out", out_png, "PNG output (the report's display mapping)");
@@ -154,6 +157,13 @@ int main(int argc, char** argv) {
     if (const std::string why = check_split(factors); !why.empty())
       return usage("--split " + split + ": " + why);
     s.split = factors;
+  }
+  if (!split_weights.empty()) {
+    const auto v = parse_vec3(split_weights);
+    if (!v || glm::any(glm::lessThan(*v, vec3(0.01f))) || glm::any(glm::greaterThan(*v, vec3(1.0f))))
+      return usage("--split-weights " + split_weights +
+                   ": expected three numbers r,g,b in [0.01, 1], e.g. 0.5,0.25,1");
+    s.split_weights = *v;
   }
   if (!light.empty()) {
     const auto v = parse_vec3(light);

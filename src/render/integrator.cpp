@@ -112,9 +112,10 @@ vec3 trace(const World& world, const PointLight& light, const RenderSettings& se
         // Indirect, report section 3: cosine sampling makes the estimator rho * L_in
         // (beta already holds rho).
         if (depth == settings.max_depth) return L;
-        const int split = std::size_t(diffuse_hits) < settings.split.size()
-                              ? settings.split[std::size_t(diffuse_hits)]
-                              : 1;
+        const int split = weighted_split(std::size_t(diffuse_hits) < settings.split.size()
+                                             ? settings.split[std::size_t(diffuse_hits)]
+                                             : 1,
+                                         beta, settings.split_weights);
         ++diffuse_hits;
         const Frame frame(ns);
         if (split > 1) {

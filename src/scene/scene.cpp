@@ -1,9 +1,17 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
 namespace whisker {
+
+int weighted_split(int split, const vec3& beta, const vec3& weights) {
+  float w = 0.0f;
+  for (int c = 0; c < 3; ++c)
+    if (beta[c] != 0.0f) w = std::max(w, weights[c]);
+  return std::max(1, int(float(split) * w + 0.5f));
+}
 
 namespace {
 

@@ -82,7 +82,16 @@ struct RenderSettings {
   // path up to there and its direct-light ray are shared by all of them.
   // Entries past the end are 1; {1} is the report's one path per sample.
   std::vector<int> split{4, 4};
+  // Per colour channel: a path that still carries the channels C splits
+  // round(split[d] * max over C of split_weights[c]) ways (at least 1), so
+  // effort goes where the image's error is (issue 6: in the report's room
+  // the blue channel holds most of it). Each path's count depends only on
+  // its own past, so the estimate stays unbiased. All 1: plain `split`.
+  vec3 split_weights{1.0f};
 };
+
+// The split factor for a path whose throughput is beta (see split_weights).
+int weighted_split(int split, const vec3& beta, const vec3& weights);
 
 // Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
 constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;

@@ -265,7 +265,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   if (top.has("settings")) {
     Fields s = top.object("settings");
     s.only({"spp", "max_depth", "indirect", "fresnel", "aa", "seed", "target_spp", "accel",
-            "sampler", "zero_cutoff", "split"});
+            "sampler", "zero_cutoff", "split", "split_weights"});
     RenderSettings& r = scene.settings;
     r.spp = int(s.integer("spp", 1, 1 << 20, r.spp));
     r.max_depth = int(s.integer("max_depth", 0, 1000, r.max_depth));
@@ -299,6 +299,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       if (const std::string why = check_split(split); !why.empty()) s.fail(s.field("split"), why);
       r.split = split;
     }
+    r.split_weights = s.vector("split_weights", 0.01, 1.0, r.split_weights);
   }
   if (top.has("spheres")) {
     const json& arr = top.at("spheres");
@@ -399,7 +400,7 @@ std::string scene_to_json(const Scene& s) {
                    {"fresnel", r.fresnel}, {"aa", r.aa},               {"seed", r.seed},
                    {"target_spp", r.target_spp}, {"accel", to_string(r.accel)},
                    {"sampler", to_string(r.sampler)}, {"zero_cutoff", r.zero_cutoff},
-                   {"split", r.split}};
+                   {"split", r.split}, {"split_weights", to_json(r.split_weights)}};
   j["spheres"] = json::array();
   for (const auto& sp : s.spheres) {
     json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", sp.radius},

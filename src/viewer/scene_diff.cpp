@@ -15,7 +15,8 @@ bool same_settings(const RenderSettings& a, const RenderSettings& b) {
   return a.spp == b.spp && a.max_depth == b.max_depth && a.indirect == b.indirect &&
          a.fresnel == b.fresnel && a.aa == b.aa && a.seed == b.seed &&
          a.target_spp == b.target_spp && a.accel == b.accel && a.sampler == b.sampler &&
-         a.zero_cutoff == b.zero_cutoff && a.split == b.split;
+         a.zero_cutoff == b.zero_cutoff && a.split == b.split &&
+         a.split_weights == b.split_weights;
 }
 
 static bool same_spheres(const Scene& a, const Scene& b) {
