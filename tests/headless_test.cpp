@@ -83,6 +83,29 @@ TEST(Headless, EverySphereSceneWritesPngFloatImageAndStats) {
   fs::remove_all(dir);
 }
 
+TEST(Headless, SplitWeightsReachTheRendererAndTheStats) {
+  // The indirect scene (split 4,4 by default): weights of 0.25 make every
+  // split round(4 * 0.25) = 1, so a sample traces fewer rays; the stats
+  // record the weights used.
+  const fs::path dir = temp_dir();
+  auto rays = [&](const std::string& extra, nlohmann::json& j) {
+    const fs::path stats = dir / "s.json";
+    const Result r = run("--headless --quiet --scene indirect --spp 1 --seed 3 --out-float " +
+                         (dir / "x.pfm").string() + " --stats " + stats.string() + extra);
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream sj(stats);
+    j = nlohmann::json::parse(sj);
+    return j["rays"].get<double>();
+  };
+  nlohmann::json plain, weighted;
+  const double full = rays("", plain);
+  const double fewer = rays(" --split-weights 0.25,0.25,0.25", weighted);
+  EXPECT_EQ(plain["settings"]["split_weights"], nlohmann::json({1.0, 1.0, 1.0}));
+  EXPECT_EQ(weighted["settings"]["split_weights"], nlohmann::json({0.25, 0.25, 0.25}));
+  EXPECT_LT(fewer, 0.5 * full);
+  fs::remove_all(dir);
+}
+
 TEST(Headless, PngFollowsTheReportsMapping) {
   const fs::path dir = temp_dir();
   const Result r = run("--headless --quiet --scene diffuse-ball --out " + (dir / "a.png").string() +
