@@ -66,7 +66,7 @@ export WHISKER_ASSETS=${WHISKER_ASSETS:-$(cd "$ROOT/.." && pwd)/shared/assets}
 no_timer() { shift; "$@"; }
 TIMER=(/usr/bin/time -f "%U %S" -o)
 [ -x /usr/bin/time ] || TIMER=(no_timer)
-REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1)
+REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1 --split-weights 1,1,1)
 # Whisker best: the defaults, or BEST_FLAGS (e.g. "--split 1" for the
 # single-path estimator the table in docs/PERFORMANCE.md was measured with).
 read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"
@@ -170,8 +170,10 @@ for name in $SCENES; do
   if [ "$name" = closed-sphere ]; then
     echo '{"exact": true}' >"${ref%.pfm}.json"
   elif [ "$FORCE_REFS" = 1 ] || [ ! -f "$ref" ]; then
-    log "reference $name ${RES}x$RES at $REF_SPP spp (sobol, zero cut-off)"
-    render "$scene" "$REF_SPP" "$REF_SEED" "$ref" "${ref%.pfm}.json" --sampler sobol --zero-cutoff on --split 1
+    # The reference is Whisker best itself (the same flags), so that its
+    # own noise is C_best / REF_SPP in the agreement table below.
+    log "reference $name ${RES}x$RES at $REF_SPP spp (Whisker best)"
+    render "$scene" "$REF_SPP" "$REF_SEED" "$ref" "${ref%.pfm}.json" ${BEST_FLAGS[@]+"${BEST_FLAGS[@]}"}
   fi
   if [ "$FORCE_REFS" = 1 ] || [ ! -f "$agree" ]; then
     log "converged report-method image $name ${res}x$res at $AGREE_SPP spp"
