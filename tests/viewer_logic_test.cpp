@@ -55,7 +55,8 @@ TEST(SceneChange, SettingsOnly) {
                     +[](RenderSettings& r) { r.target_spp = 64; },
                     +[](RenderSettings& r) { r.sampler = SamplerKind::Independent; },
                     +[](RenderSettings& r) { r.zero_cutoff = false; },
-                    +[](RenderSettings& r) { r.split = {1}; }}) {
+                    +[](RenderSettings& r) { r.split = {1}; },
+                    +[](RenderSettings& r) { r.split_weights = vec3(1.0f, 0.5f, 1.0f); }}) {
     Scene b = a;
     edit(b.settings);
     EXPECT_EQ(classify_change(a, b), SceneChange::Settings);

@@ -168,6 +168,9 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
           if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
         ImGui::EndCombo();
       }
+      // Channel weights of the split (RenderSettings::split_weights).
+      ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, 0.01f, 1.0f, "%.2f",
+                         ImGuiSliderFlags_AlwaysClamp);
     }
     if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
     if (r.target_spp == 0) {
