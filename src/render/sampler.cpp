@@ -136,7 +136,7 @@ struct PixelSeeds {
   std::uint32_t key = 0;
   bool valid = false;
   std::uint32_t first[4];              // dimensions 0-3 (the 4D point)
-  std::uint32_t pair[kCachedPairs][3];  // padded pair d: shuffle, x, y
+  std::uint32_t pair[kCachedPairs][3];  // padded pair d >= 2: shuffle, x, y (0, 1 unused)
 };
 
 void pair_seeds(std::uint32_t key, std::uint32_t dim, std::uint32_t out[3]) {
@@ -151,7 +151,7 @@ const PixelSeeds& pixel_seeds(std::uint32_t key) {
   cache.key = key;
   cache.valid = true;
   for (std::uint32_t k = 0; k < 4; ++k) cache.first[k] = hash32(key, 0xd0 + k);
-  for (std::uint32_t d = 0; d < kCachedPairs; ++d) pair_seeds(key, d, cache.pair[d]);
+  for (std::uint32_t d = 2; d < kCachedPairs; ++d) pair_seeds(key, d, cache.pair[d]);
   return cache;
 }
 
