@@ -27,7 +27,7 @@ using namespace whisker;
 
 struct Options {
   std::string file;
-  std::string mesh = WHISKER_SHARED_DIR "/assets/cat.obj";
+  std::string mesh = WHISKER_ASSETS_DIR "/cat.obj";
   std::string accel = "sah";
   int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   int reps = 5;

@@ -33,7 +33,6 @@ read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
 THREADS=${THREADS:-2}
 OUT=${CAT_OUT:-$BUILD/cat-target}
 REPORT_PROGRAM_SECONDS=1080
-export WHISKER_ASSETS=${WHISKER_ASSETS:-$(cd "$ROOT/.." && pwd)/shared/assets}
 
 cmake --build "$BUILD" -j 2 --target whisker whisker-compare >/dev/null
 mkdir -p "$OUT/bin"

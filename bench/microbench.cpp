@@ -20,7 +20,7 @@ const std::vector<Ray>& rays() {
 }
 
 void trace(benchmark::State& state, AccelKind kind) {
-  const Bvh bvh = Bvh::build(bench::load_cat(WHISKER_SHARED_DIR "/assets/cat.obj"), kind);
+  const Bvh bvh = Bvh::build(bench::load_cat(WHISKER_ASSETS_DIR "/cat.obj"), kind);
   const std::vector<Ray>& rs = rays();
   std::size_t i = 0;
   for (auto _ : state) {

@@ -59,7 +59,6 @@ OUT=${CONV_OUT:-$BUILD/convergence}  # results of this run (runs/ is emptied at 
 REFS=$BUILD/references
 RUNS=$OUT/runs
 SCENE_DIR=$OUT/scenes
-export WHISKER_ASSETS=${WHISKER_ASSETS:-$(cd "$ROOT/.." && pwd)/shared/assets}
 
 # GNU time (Debian package "time") for the CPU-time column; without it the
 # column stays empty.

@@ -137,7 +137,7 @@ std::vector<Ray> cat_rays(const std::vector<Triangle>& tris, int n) {
 
 std::vector<Triangle> load_cat() {
   const TriangleMesh m =
-      load_obj(WHISKER_SHARED_DIR "/assets/cat.obj", 0.6f, vec3(0.0f, -10.0f, 0.0f));
+      load_obj(WHISKER_ASSETS_DIR "/cat.obj", 0.6f, vec3(0.0f, -10.0f, 0.0f));
   std::vector<Triangle> tris;
   for (const auto& t : m.triangles)
     tris.push_back({m.positions[t.x], m.positions[t.y], m.positions[t.z]});

@@ -47,7 +47,7 @@ class MeshIo : public ::testing::Test {
 
 TEST_F(MeshIo, LoadsTheCatWithAWarningForItsMissingMaterialLibrary) {
   const TriangleMesh m =
-      load_obj(WHISKER_SHARED_DIR "/assets/cat.obj", 0.6f, vec3(0.0f, -10.0f, 0.0f));
+      load_obj(WHISKER_ASSETS_DIR "/cat.obj", 0.6f, vec3(0.0f, -10.0f, 0.0f));
   EXPECT_EQ(m.positions.size(), 2247u);
   EXPECT_EQ(m.triangles.size() + m.dropped_degenerate, 3954u);
   EXPECT_EQ(m.dropped_degenerate, 0u);

@@ -200,7 +200,6 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
     if (const char* env = std::getenv("WHISKER_ASSETS"); env && *env)
       tried.push_back(fs::path(env) / p);
     tried.push_back(source_root() / "assets" / p);
-    tried.push_back(source_root() / ".." / "shared" / "assets" / p);
   }
   std::error_code ec;
   for (const auto& t : tried)

@@ -37,7 +37,7 @@ std::string scene_to_json(const Scene& scene);
 std::string camera_to_json(const Camera& camera);
 
 // Where a mesh path resolves: relative to the scene file, $WHISKER_ASSETS,
-// <source>/assets, <source>/../shared/assets. Throws SceneError naming them.
+// <source>/assets. Throws SceneError naming them.
 std::filesystem::path resolve_mesh(const std::string& path,
                                    const std::filesystem::path& base_dir,
                                    const std::string& field);
