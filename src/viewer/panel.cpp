@@ -90,17 +90,8 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
   return changed;
 }
 
-void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
-                double now, PanelRequests& req) {
-  ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
-  ImGui::SetNextWindowSize(ImVec2(panel_w, window_h));
-  ImGui::Begin("Whisker", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
-                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
-                   ImGuiWindowFlags_NoBringToFrontOnFocus);
-  ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
-
-  stats(s, now);
+// Pause, restart and save, and the last load / save message.
+static void controls(const ViewerState& s, PanelRequests& req) {
   if (ImGui::Button(s.paused ? "Resume (Space)" : "Pause (Space)")) req.toggle_pause = true;
   ImGui::SameLine();
   if (ImGui::Button("Restart (R)")) req.restart = true;
@@ -112,112 +103,149 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
     else
       ImGui::TextWrapped("%s", s.message.c_str());
   }
+}
 
-  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
-    ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f");
-    static const char* modes[] = {"image", "noise (rel. std. error)"};
-    ImGui::Combo("view", &s.display.mode, modes, 2);
-    if (ImGui::Button("Report mapping")) {
-      s.exposure_stops = 0.0f;
-      s.display.gamma = 2.2f;
-      s.display.mode = 0;
-    }
+static void display_section(ViewerState& s) {
+  if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
+  ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f");
+  static const char* modes[] = {"image", "noise (rel. std. error)"};
+  ImGui::Combo("view", &s.display.mode, modes, 2);
+  if (ImGui::Button("Report mapping")) {
+    s.exposure_stops = 0.0f;
+    s.display.gamma = 2.2f;
+    s.display.mode = 0;
   }
+}
 
-  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (ImGui::BeginCombo("bundled", s.scene_label.c_str())) {
-      for (const std::string& name : s.scene_names)
-        if (ImGui::Selectable(name.c_str(), name == s.scene_label)) req.load_scene = name;
-      ImGui::EndCombo();
-    }
-    const bool enter = ImGui::InputText("path", &s.path_field,
-                                        ImGuiInputTextFlags_EnterReturnsTrue);
+static void scene_section(ViewerState& s, PanelRequests& req) {
+  if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (ImGui::BeginCombo("bundled", s.scene_label.c_str())) {
+    for (const std::string& name : s.scene_names)
+      if (ImGui::Selectable(name.c_str(), name == s.scene_label)) req.load_scene = name;
+    ImGui::EndCombo();
+  }
+  const bool enter = ImGui::InputText("path", &s.path_field,
+                                      ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Load") || enter) && !s.path_field.empty())
+    req.load_scene = s.path_field;
+}
+
+static void light_section(PointLight& light) {
+  if (!ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::DragFloat3("position", &light.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  ImGui::DragFloat("intensity", &light.intensity, light.intensity * 0.005f + 1.0f,
+                   0.0f, 1e14f, "%.3g", ImGuiSliderFlags_Logarithmic);
+}
+
+// The render settings' own widgets, one per setting, in one row of
+// checkboxes and then sliders.
+static void settings_widgets(RenderSettings& r) {
+  ImGui::Checkbox("Fresnel", &r.fresnel);
+  ImGui::SameLine();
+  ImGui::Checkbox("indirect", &r.indirect);
+  ImGui::SameLine();
+  ImGui::Checkbox("anti-aliasing", &r.aa);
+  ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
+  ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
+}
+
+// Splitting: paths per sample from its first and second diffuse hits.
+static void split_widgets(RenderSettings& r) {
+  static const std::vector<int> kChoices[] = {{1}, {4}, {4, 4}, {8, 4}};
+  static const char* const kNames[] = {"1 (the report's)", "4", "4 x 4 (default)", "8 x 4"};
+  int current = -1;
+  for (int k = 0; k < 4; ++k)
+    if (r.split == kChoices[k]) current = k;
+  const std::string preview =
+      current >= 0 ? kNames[current] : split_to_string(r.split) + " (command line)";
+  if (ImGui::BeginCombo("paths/sample", preview.c_str())) {
+    for (int k = 0; k < 4; ++k)
+      if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
+    ImGui::EndCombo();
+  }
+  // Channel weights of the split (RenderSettings::split_weights).
+  ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, 0.01f, 1.0f, "%.2f",
+                      ImGuiSliderFlags_AlwaysClamp);
+}
+
+// Applied on release: each change restarts the worker pool.
+static void threads_slider(ViewerState& s, PanelRequests& req) {
+  const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
+  if (s.threads_edit <= 0) s.threads_edit = s.threads;
+  ImGui::SliderInt("threads", &s.threads_edit, 1, std::max(hw, s.threads));
+  if (ImGui::IsItemDeactivatedAfterEdit() && s.threads_edit != s.threads)
+    req.threads = s.threads_edit;
+  if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
+}
+
+static void sampling_section(ViewerState& s, PanelRequests& req) {
+  if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  RenderSettings& r = s.edited.settings;
+  settings_widgets(r);
+  split_widgets(r);
+  if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
+  if (r.target_spp == 0) {
     ImGui::SameLine();
-    if ((ImGui::Button("Load") || enter) && !s.path_field.empty())
-      req.load_scene = s.path_field;
+    ImGui::TextDisabled("(never stop)");
   }
+  threads_slider(s, req);
+}
 
-  Scene& e = s.edited;
-  if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::DragFloat3("position", &e.light.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
-    ImGui::DragFloat("intensity", &e.light.intensity, e.light.intensity * 0.005f + 1.0f,
-                     0.0f, 1e14f, "%.3g", ImGuiSliderFlags_Logarithmic);
-  }
+static void camera_section(Camera& camera, PanelRequests& req) {
+  if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::DragFloat3("eye", &camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  ImGui::DragFloat3("look at", &camera.look_at.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  ImGui::SliderFloat("fov (deg)", &camera.fov_deg, 5.0f, 150.0f, "%.1f");
+  if (ImGui::Button("Reset camera")) req.reset_camera = true;
+  ImGui::SameLine();
+  if (ImGui::Button("Print JSON (C)")) req.print_camera = true;
+  ImGui::TextDisabled("left drag orbit, right/middle drag pan, wheel dolly");
+}
 
-  if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) {
-    RenderSettings& r = e.settings;
-    ImGui::Checkbox("Fresnel", &r.fresnel);
-    ImGui::SameLine();
-    ImGui::Checkbox("indirect", &r.indirect);
-    ImGui::SameLine();
-    ImGui::Checkbox("anti-aliasing", &r.aa);
-    ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
-    ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
-    {
-      // Splitting: paths per sample from its first and second diffuse hits.
-      static const std::vector<int> kChoices[] = {{1}, {4}, {4, 4}, {8, 4}};
-      static const char* const kNames[] = {"1 (the report's)", "4", "4 x 4 (default)", "8 x 4"};
-      int current = -1;
-      for (int k = 0; k < 4; ++k)
-        if (r.split == kChoices[k]) current = k;
-      const std::string preview =
-          current >= 0 ? kNames[current] : split_to_string(r.split) + " (command line)";
-      if (ImGui::BeginCombo("paths/sample", preview.c_str())) {
-        for (int k = 0; k < 4; ++k)
-          if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
-        ImGui::EndCombo();
-      }
-      // Channel weights of the split (RenderSettings::split_weights).
-      ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, 0.01f, 1.0f, "%.2f",
-                         ImGuiSliderFlags_AlwaysClamp);
+static void objects_section(Scene& e) {
+  if (!ImGui::CollapsingHeader("Objects")) return;
+  for (std::size_t i = 0; i < e.spheres.size(); ++i) {
+    SphereObject& sp = e.spheres[i];
+    ImGui::PushID(int(i));
+    const std::string label = sp.name.empty() ? "sphere " + std::to_string(i) : sp.name;
+    if (ImGui::TreeNode(label.c_str())) {
+      material_editor(sp.material, &sp.radius, &sp.inner_radius);
+      ImGui::TreePop();
     }
-    if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
-    if (r.target_spp == 0) {
-      ImGui::SameLine();
-      ImGui::TextDisabled("(never stop)");
-    }
-    // Applied on release: each change restarts the worker pool.
-    const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
-    if (s.threads_edit <= 0) s.threads_edit = s.threads;
-    ImGui::SliderInt("threads", &s.threads_edit, 1, std::max(hw, s.threads));
-    if (ImGui::IsItemDeactivatedAfterEdit() && s.threads_edit != s.threads)
-      req.threads = s.threads_edit;
-    if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
+    ImGui::PopID();
   }
+  for (std::size_t i = 0; i < e.meshes.size(); ++i) {
+    MeshObject& m = e.meshes[i];
+    ImGui::PushID(int(1000000 + i));
+    const std::string label = m.name.empty() ? "mesh " + std::to_string(i) : m.name;
+    if (ImGui::TreeNode(label.c_str())) {
+      material_editor(m.material, nullptr, nullptr);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+}
 
-  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::DragFloat3("eye", &e.camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
-    ImGui::DragFloat3("look at", &e.camera.look_at.x, 0.25f, 0.0f, 0.0f, "%.2f");
-    ImGui::SliderFloat("fov (deg)", &e.camera.fov_deg, 5.0f, 150.0f, "%.1f");
-    if (ImGui::Button("Reset camera")) req.reset_camera = true;
-    ImGui::SameLine();
-    if (ImGui::Button("Print JSON (C)")) req.print_camera = true;
-    ImGui::TextDisabled("left drag orbit, right/middle drag pan, wheel dolly");
-  }
+void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
+                double now, PanelRequests& req) {
+  ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(panel_w, window_h));
+  ImGui::Begin("Whisker", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
 
-  if (ImGui::CollapsingHeader("Objects")) {
-    for (std::size_t i = 0; i < e.spheres.size(); ++i) {
-      SphereObject& sp = e.spheres[i];
-      ImGui::PushID(int(i));
-      const std::string label = sp.name.empty() ? "sphere " + std::to_string(i) : sp.name;
-      if (ImGui::TreeNode(label.c_str())) {
-        material_editor(sp.material, &sp.radius, &sp.inner_radius);
-        ImGui::TreePop();
-      }
-      ImGui::PopID();
-    }
-    for (std::size_t i = 0; i < e.meshes.size(); ++i) {
-      MeshObject& m = e.meshes[i];
-      ImGui::PushID(int(1000000 + i));
-      const std::string label = m.name.empty() ? "mesh " + std::to_string(i) : m.name;
-      if (ImGui::TreeNode(label.c_str())) {
-        material_editor(m.material, nullptr, nullptr);
-        ImGui::TreePop();
-      }
-      ImGui::PopID();
-    }
-  }
+  stats(s, now);
+  controls(s, req);
+  display_section(s);
+  scene_section(s, req);
+  light_section(s.edited.light);
+  sampling_section(s, req);
+  camera_section(s.edited.camera, req);
+  objects_section(s.edited);
 
   ImGui::PopItemWidth();
   ImGui::End();

@@ -1,0 +1,31 @@
+// The viewer's actions on the renderer: every restart goes through here.
+#pragma once
+
+#include <string>
+
+#include "render/progressive.h"
+#include "scene/scene.h"
+#include "viewer/viewer_state.h"
+
+namespace whisker {
+
+// The scene's name, else the file's stem, else "scene".
+std::string scene_label_of(const Scene& scene, const std::string& path);
+
+struct Controller {
+  ProgressiveRenderer& renderer;
+  ViewerState& s;
+
+  // Hands the panel's edits to the renderer if a value really changed.
+  void apply_edits(double now);
+  // Renders the applied scene again from the first pass.
+  void restart(double now);
+  // Loads a bundled scene by name or a scene file; errors go to the panel.
+  void load(const std::string& name_or_path, double now);
+  // Writes the current mean as PNG and EXR (or PFM) into s.save_dir.
+  void save();
+  // Carries out the panel's and the keys' requests, except quitting.
+  void carry_out(const PanelRequests& req, double now);
+};
+
+}  // namespace whisker

@@ -1,0 +1,60 @@
+#include "viewer/input.h"
+
+#include <cmath>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include "viewer/camera_control.h"
+
+namespace whisker {
+
+void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& req) {
+  if (imgui_wants_keyboard) return;
+  if (keys.space) req.toggle_pause = true;
+  if (keys.r) req.restart = true;
+  if (keys.s) req.save = true;
+  if (keys.c) req.print_camera = true;
+  if (keys.escape) req.quit = true;
+}
+
+void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
+  for (int b = 0; b < 3; ++b) {
+    if (in.clicked[b]) dragging_[b] = !in.imgui_wants_mouse;
+    if (!in.down[b]) dragging_[b] = false;
+  }
+  const bool moved =
+      (in.dx != 0.0f || in.dy != 0.0f) && std::isfinite(in.dx) && std::isfinite(in.dy);
+  if (moved && dragging_[0]) orbit(cam, -in.dx * 0.008f, -in.dy * 0.008f);
+  if (moved && (dragging_[1] || dragging_[2])) pan(cam, in.dx / image_scale, in.dy / image_scale);
+  if (in.wheel != 0.0f && !in.imgui_wants_mouse) dolly(cam, std::pow(0.9f, in.wheel));
+}
+
+KeyPresses read_keys() {
+  KeyPresses k;
+  k.space = ImGui::IsKeyPressed(GLFW_KEY_SPACE, false);
+  k.r = ImGui::IsKeyPressed(GLFW_KEY_R, false);
+  k.s = ImGui::IsKeyPressed(GLFW_KEY_S, false);
+  k.c = ImGui::IsKeyPressed(GLFW_KEY_C, false);
+  k.escape = ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false);
+  return k;
+}
+
+MouseInput read_mouse() {
+  const ImGuiIO& io = ImGui::GetIO();
+  MouseInput m;
+  for (int b = 0; b < 3; ++b) {
+    m.clicked[b] = ImGui::IsMouseClicked(b);
+    m.down[b] = ImGui::IsMouseDown(b);
+  }
+  m.dx = io.MouseDelta.x;
+  m.dy = io.MouseDelta.y;
+  m.wheel = io.MouseWheel;
+  m.imgui_wants_mouse = io.WantCaptureMouse;
+  return m;
+}
+
+bool imgui_wants_keyboard() { return ImGui::GetIO().WantCaptureKeyboard; }
+
+}  // namespace whisker

@@ -1,0 +1,51 @@
+// Keys and mouse to actions. The mappings are plain functions of what was
+// pressed and what ImGui wants (testable without a window); read_keys() and
+// read_mouse() fill their inputs from ImGui's state for this frame.
+#pragma once
+
+#include "scene/scene.h"
+#include "viewer/viewer_state.h"
+
+namespace whisker {
+
+// Shortcut keys pressed this frame (not repeats).
+struct KeyPresses {
+  bool space = false;   // pause / resume
+  bool r = false;       // restart
+  bool s = false;       // save
+  bool c = false;       // print the camera as JSON
+  bool escape = false;  // quit
+};
+
+// Adds the keys' requests to `req`; none while ImGui takes keyboard input
+// (a text field has focus), so typing "s" in a path does not save.
+void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& req);
+
+// The mouse this frame, for buttons left, right, middle.
+struct MouseInput {
+  bool clicked[3] = {false, false, false};  // pressed this frame
+  bool down[3] = {false, false, false};
+  float dx = 0.0f, dy = 0.0f;  // movement in window units
+  float wheel = 0.0f;
+  bool imgui_wants_mouse = false;  // over the panel or one of its widgets
+};
+
+// Left drag: orbit, right/middle drag: pan, wheel: dolly. A drag that starts
+// over the panel belongs to ImGui and never moves the camera, wherever it
+// goes after.
+class MouseCamera {
+ public:
+  // `image_scale`: image pixels per window unit, so a pan drags the scene
+  // with the mouse.
+  void update(Camera& cam, const MouseInput& in, float image_scale);
+
+ private:
+  bool dragging_[3] = {false, false, false};
+};
+
+KeyPresses read_keys();
+MouseInput read_mouse();
+// True while ImGui takes keyboard input.
+bool imgui_wants_keyboard();
+
+}  // namespace whisker

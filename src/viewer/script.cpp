@@ -1,0 +1,30 @@
+#include "viewer/script.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace whisker {
+
+void ScriptedRun::prepare(ViewerState& s) const {
+  if (opt_.frames <= 0) return;
+  s.initial.settings.target_spp = opt_.frames * std::max(1, opt_.scene.settings.spp);
+  s.applied = s.edited = s.initial;
+}
+
+void ScriptedRun::apply_due_edit(ViewerState& s) {
+  if (next_edit_ >= opt_.edits.size()) return;
+  const ScriptedEdit& edit = opt_.edits[next_edit_];
+  const Snapshot& sn = s.snap;
+  if (sn.generation != s.generation || sn.preview) return;
+  if (sn.passes < std::uint64_t(std::max(0, edit.after_pass)) && !sn.done) return;
+  if (edit.light_position) s.edited.light.position = *edit.light_position;
+  ++next_edit_;
+}
+
+bool ScriptedRun::finished(const ViewerState& s) const {
+  const Snapshot& sn = s.snap;
+  return opt_.frames > 0 && next_edit_ == opt_.edits.size() && sn.generation == s.generation &&
+         !sn.preview && (sn.passes >= std::uint64_t(opt_.frames) || sn.done);
+}
+
+}  // namespace whisker

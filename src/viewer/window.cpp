@@ -1,0 +1,130 @@
+#include "viewer/window.h"
+
+#include <algorithm>
+
+#include <glad/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+namespace whisker {
+
+namespace {
+
+std::string g_glfw_error;
+int g_redraw = 0;  // frames to draw because of input
+
+void on_glfw_error(int code, const char* text) {
+  g_glfw_error = std::string(text ? text : "") + " (GLFW error " + std::to_string(code) + ")";
+}
+
+// Input marks the window for redrawing. Installed before ImGui's backend,
+// which chains to them.
+void mark_redraw() { g_redraw = 3; }
+void install_redraw_callbacks(GLFWwindow* w) {
+  glfwSetCursorPosCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow*, int, int, int) { mark_redraw(); });
+  glfwSetScrollCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
+  glfwSetKeyCallback(w, [](GLFWwindow*, int, int, int, int) { mark_redraw(); });
+  glfwSetCharCallback(w, [](GLFWwindow*, unsigned) { mark_redraw(); });
+  glfwSetCursorEnterCallback(w, [](GLFWwindow*, int) { mark_redraw(); });
+  glfwSetWindowFocusCallback(w, [](GLFWwindow*, int) { mark_redraw(); });
+  glfwSetFramebufferSizeCallback(w, [](GLFWwindow*, int, int) { mark_redraw(); });
+  glfwSetWindowRefreshCallback(w, [](GLFWwindow*) { mark_redraw(); });
+}
+
+}  // namespace
+
+const std::string& last_glfw_error() { return g_glfw_error; }
+
+bool redraw_pending() { return g_redraw > 0; }
+void take_redraw() {
+  if (g_redraw > 0) --g_redraw;
+}
+
+GlfwSession::GlfwSession() {
+  glfwSetErrorCallback(on_glfw_error);
+  ok_ = glfwInit() == GLFW_TRUE;
+}
+
+GlfwSession::~GlfwSession() {
+  if (ok_) glfwTerminate();
+}
+
+void initial_window_size(int image_w, int image_h, int asked_w, int asked_h, float panel_width,
+                         int& width, int& height) {
+  // Sizes are asked for in logical units: GLFW_SCALE_TO_MONITOR multiplies
+  // them by the content scale on X11 and Windows, macOS doubles the
+  // framebuffer instead. Either way the image gets its pixels 1:1.
+  float cscale = 1.0f;
+  int max_w = 1 << 14, max_h = 1 << 14;
+  if (GLFWmonitor* mon = glfwGetPrimaryMonitor()) {
+    float sy = 1.0f;
+    glfwGetMonitorContentScale(mon, &cscale, &sy);
+    if (const GLFWvidmode* mode = glfwGetVideoMode(mon)) {
+      max_w = mode->width;
+      max_h = mode->height;
+    }
+  }
+  cscale = std::clamp(cscale, 1.0f, 4.0f);
+  width = asked_w > 0 ? asked_w : int(image_w / cscale + panel_width);
+  height = asked_h > 0 ? asked_h : std::max(int(image_h / cscale), 800);
+  width = std::min(width, int(max_w / cscale));
+  height = std::min(height, int(max_h / cscale));
+}
+
+Window::Window(int width, int height, const char* title) {
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+  window_ = glfwCreateWindow(width, height, title, nullptr, nullptr);
+  if (!window_) {
+    error_ = "cannot open an OpenGL 3.3 core window (" + g_glfw_error + ").";
+    return;
+  }
+  glfwMakeContextCurrent(window_);
+  if (!gladLoadGL(glfwGetProcAddress)) {
+    error_ = "cannot load OpenGL 3.3 functions.";
+    return;
+  }
+  glfwSwapInterval(1);
+}
+
+Window::~Window() {
+  if (window_) glfwDestroyWindow(window_);
+}
+
+ImGuiSession::ImGuiSession(GLFWwindow* window) {
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // the panel is fixed; nothing to remember
+  ImGui::StyleColorsDark();
+  // The panel scales by whatever the framebuffer does not already: the
+  // content scale on X11/Windows, nothing more on macOS.
+  float sx = 1.0f, sy = 1.0f;
+  glfwGetWindowContentScale(window, &sx, &sy);
+  int fw = 0, fh = 0, ww = 0, wh = 0;
+  glfwGetFramebufferSize(window, &fw, &fh);
+  glfwGetWindowSize(window, &ww, &wh);
+  const float fb_ratio = ww > 0 && fw > 0 ? float(fw) / ww : 1.0f;
+  ui_scale_ = std::clamp(sx / fb_ratio, 1.0f, 4.0f);
+  ImGui::GetStyle().ScaleAllSizes(ui_scale_);
+  io.FontGlobalScale = ui_scale_;
+  install_redraw_callbacks(window);
+  g_redraw = 3;
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330");
+}
+
+ImGuiSession::~ImGuiSession() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+}  // namespace whisker

@@ -1,0 +1,75 @@
+// The window's resources, each released by its destructor in the reverse
+// order of their creation: GLFW itself, the window with its OpenGL 3.3
+// context, and Dear ImGui with its GLFW and OpenGL backends.
+#pragma once
+
+#include <string>
+
+struct GLFWwindow;
+
+namespace whisker {
+
+// glfwInit (with an error callback that keeps the last message) and
+// glfwTerminate.
+class GlfwSession {
+ public:
+  GlfwSession();
+  ~GlfwSession();
+  GlfwSession(const GlfwSession&) = delete;
+  GlfwSession& operator=(const GlfwSession&) = delete;
+
+  bool ok() const { return ok_; }
+
+ private:
+  bool ok_ = false;
+};
+
+// The last GLFW error, "<text> (GLFW error <code>)", for messages.
+const std::string& last_glfw_error();
+
+// The window size in logical units: the one asked for (0 = an image of
+// image_w x image_h beside a panel of `panel_width`, at least 800 high),
+// never larger than the primary monitor. Needs GLFW.
+void initial_window_size(int image_w, int image_h, int asked_w, int asked_h, float panel_width,
+                         int& width, int& height);
+
+// A window with a current OpenGL 3.3 core context and its functions loaded
+// (glad); vsync on.
+class Window {
+ public:
+  Window(int width, int height, const char* title);
+  ~Window();
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  // Empty if the window is usable, else the one-line reason.
+  const std::string& error() const { return error_; }
+  GLFWwindow* handle() const { return window_; }
+
+ private:
+  GLFWwindow* window_ = nullptr;
+  std::string error_;
+};
+
+// The ImGui context (no .ini file, dark style, scaled to the window's content
+// scale), the redraw callbacks and the GLFW and OpenGL 3 backends.
+class ImGuiSession {
+ public:
+  explicit ImGuiSession(GLFWwindow* window);
+  ~ImGuiSession();
+  ImGuiSession(const ImGuiSession&) = delete;
+  ImGuiSession& operator=(const ImGuiSession&) = delete;
+
+  // Panel sizes are multiplied by this (1 to 4).
+  float ui_scale() const { return ui_scale_; }
+
+ private:
+  float ui_scale_ = 1.0f;
+};
+
+// Input (or a window event) asks for a few frames to be drawn so ImGui can
+// settle; the loop takes one of them per drawn frame.
+bool redraw_pending();
+void take_redraw();
+
+}  // namespace whisker
