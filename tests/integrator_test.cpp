@@ -10,9 +10,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
+#include "render/splitting.h"
 #include "scene/scene_io.h"
 #include "render_util.h"
 
