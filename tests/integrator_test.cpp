@@ -10,10 +10,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "scene/mesh_io.h"
-#include "render/integrator.h"
+#include "geometry/mesh.h"
 #include "render/direct_light.h"
+#include "render/integrator.h"
 #include "render/progressive.h"
+#include "render/sampling.h"
+#include "render/scattering.h"
 #include "render/splitting.h"
 #include "scene/scene_io.h"
 #include "render_util.h"

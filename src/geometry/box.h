@@ -1,5 +1,5 @@
-// Axis-aligned boxes and the conservative ray-box (slab) test shared by the
-// BVH builders and the scalar traversals.
+// Axis-aligned boxes (the binary BVH builders' bounds) and the conservative
+// scalar ray-box slab test (the one-box BBox method, the object-level BVH).
 #pragma once
 
 #include <algorithm>

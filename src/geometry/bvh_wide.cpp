@@ -5,16 +5,12 @@
 #include <cmath>
 #include <cstring>
 
-#include "geometry/bvh_build.h"
-
 #if defined(__AVX2__) && defined(__FMA__)
 #include <immintrin.h>
 #define WHISKER_BVH_AVX2 1
 #endif
 
 namespace whisker {
-
-// --------------------------------------------------------------- traversal --
 
 namespace {
 

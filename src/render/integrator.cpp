@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "render/direct_light.h"
+#include "render/sampling.h"
+#include "render/scattering.h"
 #include "render/splitting.h"
 
 namespace whisker {

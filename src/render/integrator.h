@@ -9,8 +9,6 @@
 
 #include "render/camera.h"
 #include "render/sampler.h"
-#include "render/sampling.h"
-#include "render/scattering.h"
 #include "scene/scene.h"
 #include "scene/world.h"
 
