@@ -14,7 +14,8 @@
 #include <nlohmann/json.hpp>
 
 #include "geometry/bvh.h"
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
+#include "scene/world.h"
 #include "ray_bench.h"
 #ifdef WHISKER_HAVE_EMBREE
 #include "embree_tracer.h"
@@ -63,7 +64,7 @@ int run_rays(const Options& opt) {
   const std::vector<Triangle> tris = subdivide(bench::load_cat(opt.mesh), opt.subdivide);
   AccelKind kind = AccelKind::Sah;
   parse(opt.accel, kind);  // CLI11 has checked the name
-  const Bvh bvh = Bvh::build(tris, kind);
+  const Bvh bvh = Bvh::build(tris, bvh_method(kind));
   auto trace = [&](const Ray& r, float& t) {
     Hit h;
     if (!bvh.intersect(r, h)) return false;

@@ -19,7 +19,7 @@ const std::vector<Ray>& rays() {
   return r;
 }
 
-void trace(benchmark::State& state, AccelKind kind) {
+void trace(benchmark::State& state, BvhMethod kind) {
   const Bvh bvh = Bvh::build(bench::load_cat(WHISKER_ASSETS_DIR "/cat.obj"), kind);
   const std::vector<Ray>& rs = rays();
   std::size_t i = 0;
@@ -31,8 +31,8 @@ void trace(benchmark::State& state, AccelKind kind) {
   state.SetItemsProcessed(state.iterations());
 }
 
-BENCHMARK_CAPTURE(trace, sah, AccelKind::Sah);
-BENCHMARK_CAPTURE(trace, midpoint, AccelKind::Midpoint);
+BENCHMARK_CAPTURE(trace, sah, BvhMethod::Sah);
+BENCHMARK_CAPTURE(trace, midpoint, BvhMethod::Midpoint);
 
 // Closest hit among N random spheres (radius 0.5-2 in a 200-unit cube), rays
 // from random points in random directions: the object-level BVH against one

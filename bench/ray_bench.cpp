@@ -5,7 +5,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 
 namespace whisker::bench {
 

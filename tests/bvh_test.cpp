@@ -11,13 +11,18 @@
 #include <utility>
 
 #include "geometry/bvh.h"
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 
 namespace whisker {
 namespace {
 
-constexpr AccelKind kAll[] = {AccelKind::Brute, AccelKind::BBox, AccelKind::Midpoint,
-                              AccelKind::Sah};
+constexpr BvhMethod kAll[] = {BvhMethod::Brute, BvhMethod::BBox, BvhMethod::Midpoint,
+                              BvhMethod::Sah};
+// For failure messages.
+const char* name(BvhMethod m) {
+  constexpr const char* kNames[] = {"brute", "bbox", "midpoint", "sah"};
+  return kNames[int(m)];
+}
 
 // Closed sphere: an icosahedron subdivided `levels` times, vertices pushed to
 // radius r around c. Shared vertices are stored once, as a real mesh is.
@@ -73,9 +78,9 @@ void expect_watertight(const IndexedMesh& m, vec3 inside, int random_rays) {
   std::vector<vec3> targets = m.p;
   for (const auto& f : m.f)
     for (int k = 0; k < 3; ++k) targets.push_back(0.5f * (m.p[f[k]] + m.p[f[(k + 1) % 3]]));
-  for (AccelKind kind : kAll) {
+  for (BvhMethod kind : kAll) {
     const Bvh bvh = Bvh::build(tris, kind);
-    const bool brute = kind == AccelKind::Brute || kind == AccelKind::BBox;
+    const bool brute = kind == BvhMethod::Brute || kind == BvhMethod::BBox;
     std::size_t escapes = 0;
     for (const vec3& t : targets) {
       const Ray r{inside, glm::normalize(t - inside)};
@@ -83,7 +88,7 @@ void expect_watertight(const IndexedMesh& m, vec3 inside, int random_rays) {
       escapes += !bvh.intersect(r, h);
       escapes += !bvh.occluded(r);
     }
-    EXPECT_EQ(escapes, 0u) << to_string(kind) << " vertex/edge rays";
+    EXPECT_EQ(escapes, 0u) << name(kind) << " vertex/edge rays";
     if (brute) continue;  // slow for a million rays; same triangle test
     std::mt19937 rng(5);
     std::normal_distribution<float> N;
@@ -93,7 +98,7 @@ void expect_watertight(const IndexedMesh& m, vec3 inside, int random_rays) {
       Hit h;
       escapes += !bvh.intersect(r, h);
     }
-    EXPECT_EQ(escapes, 0u) << to_string(kind) << " random rays";
+    EXPECT_EQ(escapes, 0u) << name(kind) << " random rays";
   }
 }
 
@@ -148,10 +153,10 @@ TEST(Bvh, SahMidpointAndBruteAgreeOnTheCat) {
   const std::vector<Triangle> tris = load_cat();
   ASSERT_EQ(tris.size(), 3954u);
   const std::vector<Ray> rays = cat_rays(tris, 100000);
-  const Bvh brute = Bvh::build(tris, AccelKind::Brute);
-  const Bvh bbox = Bvh::build(tris, AccelKind::BBox);
-  const Bvh mid = Bvh::build(tris, AccelKind::Midpoint);
-  const Bvh sah = Bvh::build(tris, AccelKind::Sah);
+  const Bvh brute = Bvh::build(tris, BvhMethod::Brute);
+  const Bvh bbox = Bvh::build(tris, BvhMethod::BBox);
+  const Bvh mid = Bvh::build(tris, BvhMethod::Midpoint);
+  const Bvh sah = Bvh::build(tris, BvhMethod::Sah);
   EXPECT_GT(sah.node_count(), 1u);
   EXPECT_GT(mid.node_count(), 1u);
   std::size_t hits = 0;
@@ -206,7 +211,7 @@ TEST(Bvh, SahMidpointAndBruteAgreeOnTheCat) {
 
 TEST(Bvh, BarycentricsReconstructTheHitPoint) {
   const std::vector<Triangle> tris = load_cat();
-  const Bvh sah = Bvh::build(tris, AccelKind::Sah);
+  const Bvh sah = Bvh::build(tris, BvhMethod::Sah);
   for (const Ray& r : cat_rays(tris, 2000)) {
     Hit h;
     if (!sah.intersect(r, h)) continue;
@@ -227,24 +232,24 @@ TEST(Bvh, DegenerateSliverAndHugeTriangles) {
       {{0, 0, -2}, {1, 0, -2}, {0, 1e-7f, -2}},       // 4 sliver, near
   };
   for (int i = 0; i < 50; ++i) tris.push_back(tris[1]);  // many degenerates
-  for (AccelKind kind : kAll) {
+  for (BvhMethod kind : kAll) {
     const Bvh bvh = Bvh::build(tris, kind);
     ASSERT_EQ(bvh.triangle_count(), tris.size());
     Hit h;
     // Straight down the collinear triangle and through the repeated vertex.
-    ASSERT_TRUE(bvh.intersect(Ray{{1, 1, 1}, {0, 0, -1}}, h)) << to_string(kind);
+    ASSERT_TRUE(bvh.intersect(Ray{{1, 1, 1}, {0, 0, -1}}, h)) << name(kind);
     EXPECT_EQ(h.prim, 3u);
     EXPECT_EQ(h.t, 101.0f);
     // Inside the near sliver (its width at x = 0.5 is 5e-8).
     h = Hit{};
-    ASSERT_TRUE(bvh.intersect(Ray{{0.5f, 2e-8f, 0}, {0, 0, -1}}, h)) << to_string(kind);
+    ASSERT_TRUE(bvh.intersect(Ray{{0.5f, 2e-8f, 0}, {0, 0, -1}}, h)) << name(kind);
     EXPECT_EQ(h.prim, 4u);
     EXPECT_EQ(h.t, 2.0f);
     // Parallel to all of them: nothing.
     h = Hit{};
-    EXPECT_FALSE(bvh.intersect(Ray{{-5, 0, -2}, {1, 0, 0}}, h)) << to_string(kind);
-    EXPECT_FALSE(bvh.intersect(Ray{{-5e6f, 0, -100}, {1, 0, 0}}, h)) << to_string(kind);
-    EXPECT_FALSE(bvh.occluded(Ray{{-5, 0, -2}, {1, 0, 0}})) << to_string(kind);
+    EXPECT_FALSE(bvh.intersect(Ray{{-5, 0, -2}, {1, 0, 0}}, h)) << name(kind);
+    EXPECT_FALSE(bvh.intersect(Ray{{-5e6f, 0, -100}, {1, 0, 0}}, h)) << name(kind);
+    EXPECT_FALSE(bvh.occluded(Ray{{-5, 0, -2}, {1, 0, 0}})) << name(kind);
     // tmin past the near hits.
     h = Hit{};
     ASSERT_TRUE(bvh.intersect(Ray{{0, -0.5f, 0}, {0, 0, -1}, 5.0f, kInf}, h));
@@ -259,7 +264,7 @@ TEST(Bvh, CollinearTrianglesAreNeverHit) {
                                       {{-1, 2, 0.5f}, {-1, 2, 0.5f}, {-1, 3, 0.5f}}};
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-  for (AccelKind kind : kAll) {
+  for (BvhMethod kind : kAll) {
     const Bvh bvh = Bvh::build(tris, kind);
     for (int i = 0; i < 30000; ++i) {
       const Triangle& t = tris[i % 3];
@@ -267,14 +272,14 @@ TEST(Bvh, CollinearTrianglesAreNeverHit) {
       const vec3 o(U(rng) * 5, U(rng) * 5, U(rng) * 5);
       const Ray r{o, glm::normalize(target - o)};
       Hit h;
-      ASSERT_FALSE(bvh.intersect(r, h)) << to_string(kind) << " " << i;
-      ASSERT_FALSE(bvh.occluded(r)) << to_string(kind) << " " << i;
+      ASSERT_FALSE(bvh.intersect(r, h)) << name(kind) << " " << i;
+      ASSERT_FALSE(bvh.occluded(r)) << name(kind) << " " << i;
     }
   }
 }
 
 TEST(Bvh, EmptyAndSingle) {
-  for (AccelKind kind : kAll) {
+  for (BvhMethod kind : kAll) {
     const Bvh empty = Bvh::build({}, kind);
     Hit h;
     EXPECT_FALSE(empty.intersect(Ray{}, h));

@@ -11,8 +11,12 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/mesh.h"
+#include "render/direct_light.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
+#include "render/sampling.h"
+#include "render/scattering.h"
+#include "render/splitting.h"
 #include "scene/scene_io.h"
 #include "render_util.h"
 
@@ -398,4 +402,50 @@ TEST(DirectLight, VertexNormalsShadeButNeverLeakThroughTheTerminator) {
   // faces it (cos 0.94), the geometry does not: no light at all.
   const Snapshot leak = render(tilted_normal_triangle(vec3(1, 0, 0.1f), vec3(4, 0, -1), true));
   EXPECT_EQ(leak.mean(0, 0, 0), 0.0f);
+}
+
+// The direct-light module on its own: the point light the World owns, the
+// formula at a lit point, nothing (and no shadow ray) for a point facing
+// away, and nothing behind an occluder (whose shadow ray is counted).
+TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
+  Scene s;
+  s.spheres.push_back({"ball", vec3(0.0f), 1.0f, 0.0f, {MaterialKind::Diffuse, vec3(0.5f)}});
+  s.light = {vec3(0.0f, 10.0f, 0.0f), 1000.0f};
+  const World world(s);
+  const double I = 1000.0;
+  for (double deg : {0.0, 30.0, 60.0}) {
+    const double a = deg * kPi / 180.0;
+    const glm::dvec3 p(std::sin(a), std::cos(a), 0.0), to = glm::dvec3(0, 10, 0) - p;
+    const double d2 = glm::dot(to, to), cos_s = glm::dot(p, to) / std::sqrt(d2);
+    std::uint64_t rays = 0;
+    float weight = -1.0f;
+    ASSERT_TRUE(direct_light(world, vec3(p), vec3(p), vec3(p), rays, weight)) << deg;
+    EXPECT_EQ(rays, 1u);
+    // I/(4 pi d^2) * <N, w_i> / pi: the albedo is the caller's.
+    const double expect = I * cos_s / (4.0 * kPi * kPi * d2);
+    EXPECT_NEAR(weight, expect, 1e-5 * expect) << deg;
+  }
+  std::uint64_t rays = 0;
+  float weight = -1.0f;
+  const vec3 down(0.0f, -1.0f, 0.0f);
+  EXPECT_FALSE(direct_light(world, down, down, down, rays, weight));  // facing away
+  EXPECT_EQ(rays, 0u);
+
+  s.spheres.push_back({"blocker", vec3(0.0f, 5.0f, 0.0f), 1.0f, 0.0f, {}});
+  const World blocked(s);
+  const vec3 up(0.0f, 1.0f, 0.0f);
+  EXPECT_FALSE(direct_light(blocked, up, up, up, rays, weight));
+  EXPECT_EQ(rays, 1u);
+}
+
+// Split factors per diffuse hit: the listed ones, then 1 past the end.
+TEST(Splitting, FactorsPerDiffuseHitEndInOnes) {
+  RenderSettings settings;
+  settings.split = {4, 2};
+  const vec3 white(1.0f);
+  EXPECT_EQ(split_factor(settings, 0, white), 4);
+  EXPECT_EQ(split_factor(settings, 1, white), 2);
+  EXPECT_EQ(split_factor(settings, 2, white), 1);
+  settings.split_weights = vec3(1.0f, 1.0f, 0.25f);
+  EXPECT_EQ(split_factor(settings, 0, vec3(0.0f, 0.0f, 0.7f)), 1);  // blue only: 4 * 0.25
 }

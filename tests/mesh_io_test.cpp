@@ -8,7 +8,7 @@
 #include <string>
 #include <algorithm>
 
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 
 namespace whisker {
 namespace {

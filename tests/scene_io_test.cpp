@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "render/splitting.h"
 #include "scene/scene_io.h"
 
 using namespace whisker;

@@ -26,10 +26,10 @@ bool zero_area(const Triangle& t) {
 
 }  // namespace
 
-Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
+Bvh Bvh::build(std::vector<Triangle> tris, BvhMethod method) {
   const auto start = std::chrono::steady_clock::now();
   Bvh b;
-  b.kind_ = kind;
+  b.method_ = method;
   b.tri_count_ = tris.size();
   // The shear of the watertight test rounds, so three distinct collinear
   // vertices can come out not quite collinear and be hit along their
@@ -37,18 +37,18 @@ Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
   // (all three edge functions are exactly zero), and keeps its index.
   for (Triangle& t : tris)
     if (zero_area(t)) t = Triangle{t.v0, t.v0, t.v0};
-  switch (kind) {
-    case AccelKind::Brute:
+  switch (method) {
+    case BvhMethod::Brute:
       b.wide_ = packets_only(tris);
       break;
-    case AccelKind::BBox:
+    case BvhMethod::BBox:
       for (const Triangle& t : tris) b.box_.grow(bounds_of(t));
       b.wide_ = packets_only(tris);
       b.node_count_ = 1;
       break;
-    case AccelKind::Midpoint:
-    case AccelKind::Sah: {
-      const BinaryBvh bin = kind == AccelKind::Sah ? build_binary_sah(tris, kSahMaxLeaf)
+    case BvhMethod::Midpoint:
+    case BvhMethod::Sah: {
+      const BinaryBvh bin = method == BvhMethod::Sah ? build_binary_sah(tris, kSahMaxLeaf)
                                                    : build_binary_midpoint(tris);
       b.wide_ = collapse_to_wide(bin, tris);
       b.node_count_ = b.wide_.nodes.size();
@@ -61,12 +61,12 @@ Bvh Bvh::build(std::vector<Triangle> tris, AccelKind kind) {
 }
 
 bool Bvh::intersect(const Ray& ray, Hit& hit) const {
-  if (kind_ == AccelKind::BBox && !box_hit(box_, ray, std::min(ray.tmax, hit.t))) return false;
+  if (method_ == BvhMethod::BBox && !box_hit(box_, ray, std::min(ray.tmax, hit.t))) return false;
   return wide_.intersect(ray, hit);
 }
 
 bool Bvh::occluded(const Ray& ray) const {
-  if (kind_ == AccelKind::BBox && !box_hit(box_, ray, ray.tmax)) return false;
+  if (method_ == BvhMethod::BBox && !box_hit(box_, ray, ray.tmax)) return false;
   return wide_.occluded(ray);
 }
 

@@ -10,10 +10,11 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/box.h"
+#include "geometry/bvh_method.h"
 #include "geometry/bvh_wide.h"
 #include "geometry/ray.h"
 #include "geometry/triangle.h"
-#include "scene/scene.h"
 
 namespace whisker {
 
@@ -22,7 +23,7 @@ class Bvh {
   Bvh() = default;
   // Builds over `tris` with the chosen method (brute force, one box, the
   // report's longest-axis barycentre split, binned SAH).
-  static Bvh build(std::vector<Triangle> tris, AccelKind kind);
+  static Bvh build(std::vector<Triangle> tris, BvhMethod method);
 
   // Closest hit in (ray.tmin, min(ray.tmax, hit.t)): fills hit (t, kind =
   // Triangle, prim = index into the triangles given to build, u, v) and
@@ -37,7 +38,7 @@ class Bvh {
   double build_seconds() const { return build_seconds_; }
 
  private:
-  AccelKind kind_ = AccelKind::Brute;
+  BvhMethod method_ = BvhMethod::Brute;
   Box3 box_;      // BBox only
   WideBvh wide_;  // the tree (Midpoint, Sah) or only the packets (Brute, BBox)
   std::size_t tri_count_ = 0;

@@ -1,8 +1,8 @@
-// Triangle meshes as loaded from OBJ files.
+// Triangle meshes: indexed triangles in world space (loaded by
+// scene/mesh_io.h).
 #pragma once
 
 #include <cstddef>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,15 +20,5 @@ struct TriangleMesh {
   std::size_t dropped_degenerate = 0;   // zero-area triangles dropped at load
   std::vector<std::string> warnings;    // e.g. "cat.mtl not found"
 };
-
-// Thrown for a mesh that cannot be loaded; what() names the file (and line
-// where known).
-struct MeshError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// Loads an OBJ file (polygons triangulated, negative indices allowed, missing
-// material library a warning), applies p' = p * scale + translate.
-TriangleMesh load_obj(const std::string& path, float scale, const vec3& translate);
 
 }  // namespace whisker

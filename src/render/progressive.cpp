@@ -9,7 +9,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "geometry/world.h"
+#include "scene/world.h"
 #include "render/camera.h"
 #include "render/integrator.h"
 #include "render/sampler.h"

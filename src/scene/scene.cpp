@@ -6,13 +6,6 @@
 
 namespace whisker {
 
-int weighted_split(int split, const vec3& beta, const vec3& weights) {
-  float w = 0.0f;
-  for (int c = 0; c < 3; ++c)
-    if (beta[c] != 0.0f) w = std::max(w, weights[c]);
-  return std::max(1, int(float(split) * w + 0.5f));
-}
-
 namespace {
 
 // One table of names per enum: to_string and parse read the same one.

@@ -90,9 +90,6 @@ struct RenderSettings {
   vec3 split_weights{1.0f};
 };
 
-// The split factor for a path whose throughput is beta (see split_weights).
-int weighted_split(int split, const vec3& beta, const vec3& weights);
-
 // Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
 constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;
 std::string check_split(const std::vector<int>& split);

@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 
 namespace whisker {
 

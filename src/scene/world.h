@@ -1,6 +1,6 @@
-// Everything a ray can hit in one scene: the spheres and the triangles of all
-// meshes (in one BVH), under one object-level BVH, with each primitive's
-// material.
+// The compiled scene: everything a ray can hit (the spheres and the
+// triangles of all meshes, in one BVH, under one object-level BVH), each
+// primitive's material, and the point light with its shadow test.
 #pragma once
 
 #include <array>
@@ -9,12 +9,16 @@
 #include <vector>
 
 #include "geometry/bvh.h"
+#include "geometry/bvh_method.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
 #include "geometry/object_bvh.h"
 #include "scene/scene.h"
 
 namespace whisker {
+
+// The scene's name for a BVH method (RenderSettings::accel) to geometry's.
+BvhMethod bvh_method(AccelKind k);
 
 struct SurfaceHit {
   float t = kInf;
@@ -42,12 +46,13 @@ class World {
   }
   void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   bool occluded(const Ray& ray) const;
-  // The same for a shadow ray from a hit point towards a point light at
-  // `light`, dist2 away: when no sphere can stand between them (see
+  // The scene's point light, as it was when this World was built.
+  const PointLight& light() const { return light_; }
+  // occluded() for a shadow ray from a hit point towards light().position,
+  // dist2 = its squared length: when no sphere can stand between them (see
   // light_clear2_) only the triangles are tested. Same answer as occluded().
-  bool occluded_to_light(const Ray& ray, const vec3& light, float dist2) const {
-    if (dist2 < light_clear2_ && light == light_)
-      return mesh_ && mesh_->bvh.occluded(ray);
+  bool occluded_to_light(const Ray& ray, float dist2) const {
+    if (dist2 < light_clear2_) return mesh_ && mesh_->bvh.occluded(ray);
     return occluded(ray);
   }
 
@@ -66,7 +71,7 @@ class World {
     std::vector<vec3> ng;                 // per triangle: unit geometric normal
     std::vector<std::array<vec3, 3>> ns;  // per triangle corner normals (if any mesh uses them)
     std::vector<const TriangleMesh*> sources;  // identity of the meshes it was built from
-    AccelKind accel = AccelKind::Sah;
+    BvhMethod method = BvhMethod::Sah;
     Box3 bounds;  // of all triangles
   };
   void set_light_clearance(const Scene& scene);
@@ -86,7 +91,7 @@ class World {
   // report's room it is about 196^2, and no point of the room is that far
   // from the light: shadow rays there never test the six wall spheres.
   float light_clear2_ = 0.0f;
-  vec3 light_{0.0f};  // the scene light it was computed for
+  PointLight light_;  // the scene light (light_clear2_ is computed for it)
 };
 
 }  // namespace whisker

@@ -1,4 +1,4 @@
-#include "geometry/world.h"
+#include "scene/world.h"
 
 #include <algorithm>
 #include <array>
@@ -9,6 +9,16 @@
 #include "geometry/mesh.h"
 
 namespace whisker {
+
+BvhMethod bvh_method(AccelKind k) {
+  switch (k) {
+    case AccelKind::Brute: return BvhMethod::Brute;
+    case AccelKind::BBox: return BvhMethod::BBox;
+    case AccelKind::Midpoint: return BvhMethod::Midpoint;
+    case AccelKind::Sah: break;
+  }
+  return BvhMethod::Sah;
+}
 
 World::World(const Scene& scene, const World* reuse) {
   set_light_clearance(scene);
@@ -36,15 +46,16 @@ World::World(const Scene& scene, const World* reuse) {
     objects_ = ObjectBvh(spheres_, Box3{});
     return;
   }
+  const BvhMethod method = bvh_method(scene.settings.accel);
   if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
-      reuse->mesh_->accel == scene.settings.accel) {
+      reuse->mesh_->method == method) {
     mesh_ = reuse->mesh_;
     objects_ = ObjectBvh(spheres_, mesh_->bounds);
     return;
   }
   auto data = std::make_shared<MeshData>();
   data->sources = sources;
-  data->accel = scene.settings.accel;
+  data->method = method;
   std::vector<Triangle> tris;
   bool any_normals = false;
   for (const auto& m : scene.meshes) any_normals |= m.vertex_normals && !m.mesh->normals.empty();
@@ -69,7 +80,7 @@ World::World(const Scene& scene, const World* reuse) {
       }
     }
   }
-  data->bvh = Bvh::build(std::move(tris), scene.settings.accel);
+  data->bvh = Bvh::build(std::move(tris), method);
   mesh_ = std::move(data);
   objects_ = ObjectBvh(spheres_, mesh_->bounds);
 }
@@ -92,7 +103,7 @@ void World::set_light_clearance(const Scene& scene) {
   }
   // |p - L|^2 is rounded in float (a few ULP); 1e-3 covers it many times over.
   light_clear2_ = float(clear * (1.0 - 1e-3));
-  light_ = scene.light.position;
+  light_ = scene.light;
 }
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {

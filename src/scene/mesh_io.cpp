@@ -9,7 +9,7 @@
 
 #include <tiny_obj_loader.h>
 
-#include "geometry/mesh.h"
+#include "scene/mesh_io.h"
 
 namespace whisker {
 namespace {

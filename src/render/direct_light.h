@@ -1,0 +1,37 @@
+// Direct light from the scene's point light (owned by the World) at a
+// diffuse point, with its shadow ray.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/offset.h"
+#include "scene/world.h"
+
+namespace whisker {
+
+// Report section 2: L_d = I/(4 pi d^2) * rho/pi * <N, w_i> * V. At point p
+// with facing normals ng, ns, sets `weight` to everything but rho (the
+// caller's throughput holds it) and returns true when the light is in front
+// of the surface and visible; counts the shadow ray it traces in `rays`.
+inline bool direct_light(const World& world, const vec3& p, const vec3& ng, const vec3& ns,
+                         std::uint64_t& rays, float& weight) {
+  constexpr float kPi = 3.14159265358979323846f;
+  const PointLight& light = world.light();
+  const vec3 to_light = light.position - p;
+  const float d2 = glm::dot(to_light, to_light);
+  const float inv_d = 1.0f / std::sqrt(d2);
+  const vec3 wi = to_light * inv_d;
+  const float cos_s = glm::dot(ns, wi);
+  // The geometric test keeps vertex normals from lighting the far side.
+  if (!(cos_s > 0.0f && glm::dot(ng, wi) > 0.0f)) return false;
+  ++rays;
+  const Ray shadow = spawn_shadow_ray(p, ng, light.position, wi);
+  if (world.occluded_to_light(shadow, d2)) return false;
+  weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
+  return true;
+}
+
+}  // namespace whisker
