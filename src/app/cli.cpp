@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -21,7 +22,7 @@ struct TypeName {
   const SettingField& f;
   std::string bounds(double hi) const {
     std::ostringstream s;
-    s << " in [" << f.lo << ", " << hi << "]";
+    s << std::setprecision(12) << " in [" << f.lo << ", " << hi << "]";
     return s.str();
   }
   std::string operator()(bool RenderSettings::*) const { return "on|off"; }

@@ -25,6 +25,8 @@ struct Material {
   MaterialKind kind = MaterialKind::Diffuse;
   vec3 albedo{1.0f};  // diffuse only
   float ior = 1.5f;   // glass and hollow glass
+
+  bool operator==(const Material&) const = default;
 };
 
 struct SphereObject {
@@ -51,6 +53,8 @@ struct MeshObject {
 struct PointLight {
   vec3 position{-10.0f, 20.0f, 40.0f};
   float intensity = 2e10f;
+
+  bool operator==(const PointLight&) const = default;
 };
 
 struct Camera {
@@ -60,6 +64,8 @@ struct Camera {
   float fov_deg = 60.0f;  // across the image width
   int width = 512;
   int height = 512;
+
+  bool operator==(const Camera&) const = default;
 };
 
 // The split factor for a path whose throughput is beta (see split_weights).

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -41,7 +42,7 @@ const SettingField kFields[] = {
 
 std::string bounds(double lo, double hi) {
   std::ostringstream s;
-  s << "[" << lo << ", " << hi << "]";
+  s << std::setprecision(12) << "[" << lo << ", " << hi << "]";
   return s.str();
 }
 

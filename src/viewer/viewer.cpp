@@ -20,6 +20,7 @@
 #include "geometry/bvh.h"
 #include "render/image_io.h"
 #include "render/progressive.h"
+#include "render/stats_io.h"
 #include "scene/scene_io.h"
 #include "viewer/camera_control.h"
 #include "viewer/display.h"
@@ -116,7 +117,7 @@ struct Controller {
                               (s.scene_label + "-" + std::to_string(sn.spp) + "spp"))
                                  .string();
     try {
-      const Image img = Image::mean_of(sn);
+      const Image img = mean_image(sn);
       write_png(base + ".png", img);
       const std::string float_path = base + (have_exr() ? ".exr" : ".pfm");
       write_float_image(float_path, img);
@@ -169,40 +170,23 @@ struct FrameStats {
   }
 };
 
-// JSON has no inf/nan: those become null.
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-// A summary next to a scripted screenshot (<screenshot>.json): where the
-// render area is, what was rendered, how fast the UI ran.
+// A summary next to a scripted screenshot (<screenshot>.json): what was
+// rendered (the shared stats record), where the render area is, how fast the
+// UI ran.
 void write_summary(const std::string& path, const PixelRect& r, const ViewerState& s,
                    const FrameStats& f, int fb_w, int fb_h) {
-  FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) return;
-  const double secs = s.snap.seconds;
-  std::fprintf(out,
-               "{\n  \"framebuffer\": [%d, %d],\n  \"render_rect\": [%d, %d, %d, %d],\n"
-               "  \"image\": [%d, %d],\n  \"scene\": \"%s\",\n  \"spp\": %llu,\n"
-               "  \"passes\": %llu,\n  \"generation\": %llu,\n  \"nan_count\": %llu,\n"
-               "  \"render_seconds\": %.4f,\n  \"passes_per_second\": %.4f,\n"
-               "  \"rays_per_second\": %.1f,\n  \"rel_std_error\": %s,\n"
-               "  \"ui_frames\": %zu,\n  \"ui_frame_ms_mean\": %.3f,\n"
-               "  \"ui_frame_ms_p95\": %.3f,\n  \"ui_frame_ms_max\": %.3f,\n"
-               "  \"ui_frame_work_ms_mean\": %.3f\n}\n",
-               fb_w, fb_h, r.x, r.y, r.w, r.h, s.snap.width, s.snap.height,
-               s.scene_label.c_str(), (unsigned long long)s.snap.spp,
-               (unsigned long long)s.snap.passes, (unsigned long long)s.snap.generation,
-               (unsigned long long)s.snap.nan_count, secs,
-               secs > 0 ? s.snap.passes / secs : 0.0, secs > 0 ? s.snap.rays / secs : 0.0,
-               json_number(s.rse).c_str(), f.total_ms.size(), FrameStats::mean(f.total_ms),
-               FrameStats::pct(f.total_ms, 0.95),
-               f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end()),
-               FrameStats::mean(f.work_ms));
-  std::fclose(out);
+  using V = std::vector<long long>;
+  RenderStats st{s.scene_label, &s.snap, s.threads, &s.applied.settings, {}};
+  const float max_ms =
+      f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end());
+  st.extra = {{"framebuffer", V{fb_w, fb_h}},
+              {"render_rect", V{r.x, r.y, r.w, r.h}},
+              {"ui_frames", (long long)f.total_ms.size()},
+              {"ui_frame_ms_mean", double(FrameStats::mean(f.total_ms))},
+              {"ui_frame_ms_p95", double(FrameStats::pct(f.total_ms, 0.95))},
+              {"ui_frame_ms_max", double(max_ms)},
+              {"ui_frame_work_ms_mean", double(FrameStats::mean(f.work_ms))}};
+  write_stats_json(path, st);
 }
 
 }  // namespace
@@ -453,11 +437,13 @@ int run_viewer(const ViewerOptions& opt) {
       const double t_work = glfwGetTime();
       if (finish && !opt.screenshot_path.empty()) {
         const auto pixels = read_framebuffer(fb_w, fb_h);
-        if (!write_png_rgb8(opt.screenshot_path, fb_w, fb_h, pixels)) {
-          std::fprintf(stderr, "whisker: cannot write %s\n", opt.screenshot_path.c_str());
+        try {
+          write_png_rgb8(opt.screenshot_path, fb_w, fb_h, pixels);
+          write_summary(opt.screenshot_path + ".json", rect, s, fstats, fb_w, fb_h);
+        } catch (const ImageError& e) {
+          std::fprintf(stderr, "whisker: %s\n", e.what());
           exit_code = 1;
         }
-        write_summary(opt.screenshot_path + ".json", rect, s, fstats, fb_w, fb_h);
       }
       glfwSwapBuffers(window);
       const double t1 = glfwGetTime();
