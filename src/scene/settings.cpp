@@ -94,6 +94,12 @@ std::span<const EnumName<AccelKind>> enum_names(AccelKind) { return kAccels; }
 
 std::span<const SettingField> setting_fields() { return kFields; }
 
+const SettingField& setting_field(std::string_view key) {
+  for (const SettingField& f : kFields)
+    if (key == f.key) return f;
+  throw std::logic_error("no render setting \"" + std::string(key) + "\"");
+}
+
 std::optional<vec3> parse_vec3(std::string_view text) {
   std::istringstream in{std::string(text)};
   vec3 v;

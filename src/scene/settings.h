@@ -108,6 +108,8 @@ struct SettingField {
 
 // Every render setting, in scene-file order.
 std::span<const SettingField> setting_fields();
+// The row of `key`; the key must be in the table.
+const SettingField& setting_field(std::string_view key);
 
 // Parses a command-line value of `f` into `s`; returns what is wrong ("" if
 // nothing), to follow "OPTION VALUE: ".
