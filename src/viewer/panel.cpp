@@ -95,6 +95,18 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
   return changed;
 }
 
+// A checkbox per boolean setting of the table, its help as the tooltip.
+static void setting_checkboxes(RenderSettings& r) {
+  int boxes = 0;
+  for (const SettingField& f : setting_fields()) {
+    if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
+      if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
+      ImGui::Checkbox(f.key, &(r.*(*m)));
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
+    }
+  }
+}
+
 void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                 double now, PanelRequests& req) {
   ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
@@ -152,15 +164,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
 
   if (ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) {
     RenderSettings& r = e.settings;
-    // A checkbox per boolean setting of the table, its help as the tooltip.
-    int boxes = 0;
-    for (const SettingField& f : setting_fields()) {
-      if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
-        if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
-        ImGui::Checkbox(f.key, &(r.*(*m)));
-        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
-      }
-    }
+    setting_checkboxes(r);
     ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
     ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
     {
