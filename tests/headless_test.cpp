@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 
 #include "render/image_io.h"
+#include "scene/settings.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -103,6 +104,11 @@ TEST(Headless, SplitWeightsReachTheRendererAndTheStats) {
   EXPECT_EQ(plain["settings"]["split_weights"], nlohmann::json({1.0, 1.0, 1.0}));
   EXPECT_EQ(weighted["settings"]["split_weights"], nlohmann::json({0.25, 0.25, 0.25}));
   EXPECT_LT(fewer, 0.5 * full);
+  // The settings block holds every setting of the table, by its scene-file key.
+  for (const SettingField& f : setting_fields())
+    EXPECT_TRUE(plain["settings"].contains(f.key)) << f.key;
+  EXPECT_EQ(plain["settings"]["split"], nlohmann::json({4, 4}));
+  EXPECT_EQ(plain["settings"]["sampler"], "sobol");
   fs::remove_all(dir);
 }
 

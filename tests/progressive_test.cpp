@@ -161,3 +161,25 @@ TEST(Progressive, CoarsePreviewIsNeverAccumulated) {
   EXPECT_FALSE(s.preview);
   EXPECT_EQ(s.sum, render(after, 1).sum);
 }
+
+TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
+  PixelSum p;
+  p.add(vec3(1.0f, 2.0f, 4.0f));
+  p.add(vec3(NAN, 0.0f, 0.0f));
+  p.add(vec3(0.0f, INFINITY, 0.0f));
+  p.add(vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_EQ(p.dropped, 2u);
+  EXPECT_EQ(p.sum, glm::dvec3(2.0, 2.0, 4.0));
+  const double y1 = 0.2126f * 1.0f + 0.7152f * 2.0f + 0.0722f * 4.0f, y2 = 0.2126f;
+  EXPECT_EQ(p.sum_sq, y1 * y1 + y2 * y2);
+
+  Film film;
+  film.reset(2, 1, false);
+  film.add(1, p);
+  Snapshot s;
+  film.publish(s, false);
+  s.spp = 2;
+  const Image img = mean_image(s);
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.rgb, std::vector<float>({0, 0, 0, 1, 1, 2}));
+}

@@ -2,17 +2,15 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <thread>
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "render/image_io.h"
 #include "render/progressive.h"
+#include "render/stats_io.h"
 
 namespace whisker {
-
 
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
@@ -52,7 +50,7 @@ int run_headless(const HeadlessOptions& o) {
   const double secs = snap.seconds;
   const double pixels = double(snap.width) * snap.height;
   const double paths = pixels * double(snap.spp);
-  const Image img = Image::mean_of(snap);
+  const Image img = mean_image(snap);
   if (!o.out_png.empty()) write_png(o.out_png, img);
   if (!o.out_float.empty()) write_float_image(o.out_float, img);
 
@@ -65,33 +63,8 @@ int run_headless(const HeadlessOptions& o) {
   if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
   std::printf("\n");
 
-  if (!o.stats_json.empty()) {
-    const RenderSettings& s = scene.settings;
-    nlohmann::json j = {
-        {"scene", scene.name},
-        {"width", snap.width},
-        {"height", snap.height},
-        {"spp", snap.spp},
-        {"passes", snap.passes},
-        {"seconds", secs},
-        {"paths_per_s", secs > 0 ? paths / secs : 0.0},
-        {"rays", snap.rays},
-        {"rays_per_s", secs > 0 ? double(snap.rays) / secs : 0.0},
-        {"nan_count", snap.nan_count},
-        {"threads", renderer.threads()},
-        {"relative_standard_error", snap.relative_standard_error()},
-        {"settings",
-         {{"spp_per_pass", s.spp}, {"max_depth", s.max_depth}, {"indirect", s.indirect},
-          {"fresnel", s.fresnel}, {"aa", s.aa}, {"seed", s.seed}, {"accel", to_string(s.accel)},
-          {"sampler", to_string(s.sampler)}, {"zero_cutoff", s.zero_cutoff}, {"split", s.split},
-          {"split_weights", {s.split_weights.x, s.split_weights.y, s.split_weights.z}}}}};
-    write_file_atomically(o.stats_json, [&](const std::string& tmp) {
-      std::ofstream out(tmp);
-      out << j.dump(2) << "\n";
-      out.close();
-      return bool(out);
-    });
-  }
+  if (!o.stats_json.empty())
+    write_stats_json(o.stats_json, {scene.name, &snap, renderer.threads(), &scene.settings, {}});
   return 0;
 }
 

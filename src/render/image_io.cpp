@@ -23,16 +23,6 @@ namespace whisker {
 
 namespace fs = std::filesystem;
 
-Image Image::mean_of(const Snapshot& s) {
-  Image img;
-  img.width = s.width;
-  img.height = s.height;
-  img.rgb.resize(s.sum.size());
-  const float inv = s.spp ? 1.0f / float(s.spp) : 0.0f;
-  for (std::size_t k = 0; k < s.sum.size(); ++k) img.rgb[k] = s.sum[k] * inv;
-  return img;
-}
-
 unsigned char to_srgb8(float radiance) {
   // SCENES.md: min(255, L^(1/2.2)); negative or NaN never happen in the
   // buffer, but clamp them to black rather than trust that.
@@ -81,8 +71,15 @@ void write_png(const std::string& path, const Image& img) {
   check(img, path);
   std::vector<unsigned char> px(img.rgb.size());
   std::transform(img.rgb.begin(), img.rgb.end(), px.begin(), to_srgb8);
+  write_png_rgb8(path, img.width, img.height, px);
+}
+
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<unsigned char>& rgb) {
+  if (width <= 0 || height <= 0 || rgb.size() != std::size_t(width) * height * 3)
+    throw ImageError(path + ": empty or malformed image");
   write_file_atomically(path, [&](const std::string& tmp) {
-    return stbi_write_png(tmp.c_str(), img.width, img.height, 3, px.data(), img.width * 3) != 0;
+    return stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3) != 0;
   });
 }
 

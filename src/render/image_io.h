@@ -8,19 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "render/progressive.h"
+#include "render/image.h"
 
 namespace whisker {
 
 struct ImageError : std::runtime_error {
   using std::runtime_error::runtime_error;
-};
-
-// Linear RGB radiance, row 0 at the top.
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-  static Image mean_of(const Snapshot& s);
 };
 
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
@@ -32,7 +25,11 @@ unsigned char to_srgb8(float radiance);
 void write_file_atomically(const std::string& path,
                            const std::function<bool(const std::string&)>& writer);
 
+// The report's mapping of `img` (to_srgb8) as an 8-bit PNG.
 void write_png(const std::string& path, const Image& img);
+// 8-bit RGB pixels, row 0 at the top, as they are (a window's screenshot).
+void write_png_rgb8(const std::string& path, int width, int height,
+                    const std::vector<unsigned char>& rgb);
 void write_pfm(const std::string& path, const Image& img);
 void write_exr(const std::string& path, const Image& img);  // throws if built without OpenEXR
 // By extension: .pfm or .exr.

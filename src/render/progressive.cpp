@@ -20,24 +20,7 @@ namespace {
 constexpr int kTile = 32;
 constexpr int kPreviewBlock = 4;  // the preview renders one sample per 4x4 block
 using Clock = std::chrono::steady_clock;
-
-float luminance(const vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 }  // namespace
-
-double Snapshot::relative_standard_error() const {
-  if (spp < 2 || width <= 0 || height <= 0) return INFINITY;
-  const double n = double(spp);
-  double var_sum = 0.0, mean_sum = 0.0;
-  const std::size_t pixels = std::size_t(width) * height;
-  for (std::size_t p = 0; p < pixels; ++p) {
-    const double m = (0.2126 * sum[3 * p] + 0.7152 * sum[3 * p + 1] + 0.0722 * sum[3 * p + 2]) / n;
-    const double var = std::max(0.0, sum_sq[p] / n - m * m) * n / (n - 1.0);  // sample variance
-    var_sum += var / n;                                                     // of the mean
-    mean_sum += m;
-  }
-  return mean_sum > 0.0 ? std::sqrt(var_sum / double(pixels)) / (mean_sum / double(pixels))
-                        : INFINITY;
-}
 
 // The state of the generation being rendered; touched by workers during a
 // pass and by thread 0 between passes only.
@@ -52,9 +35,7 @@ struct ProgressiveRenderer::Job {
   std::unique_ptr<CameraFrame> cam;
   std::uint64_t generation = 0;  // 0: nothing adopted yet
   int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
-  std::vector<double> acc;     // RGB sums, double so millions of samples keep their digits
-  std::vector<double> acc_sq;  // luminance sums of squares
-  std::vector<float> preview;  // the coarse preview pass's image
+  Film film;
   bool preview_pass = false;
   std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
   double seconds = 0.0;
@@ -202,13 +183,10 @@ bool ProgressiveRenderer::begin_pass() {
     job.height = job.scene.camera.height;
     job.tiles_x = (job.width + kTile - 1) / kTile;
     job.tiles_y = (job.height + kTile - 1) / kTile;
-    const std::size_t pixels = std::size_t(job.width) * job.height;
-    job.acc.assign(pixels * 3, 0.0);
-    job.acc_sq.assign(pixels, 0.0);
     job.spp_done = job.passes = job.nan_count = job.rays = 0;
     job.seconds = 0.0;
     job.preview_pass = preview_enabled_;
-    if (job.preview_pass) job.preview.assign(pixels * 3, 0.0f);
+    job.film.reset(job.width, job.height, job.preview_pass);
   } else {
     lock.unlock();
   }
@@ -249,12 +227,9 @@ void ProgressiveRenderer::run_tiles() {
         for (int j = j0; j < j1; j += kPreviewBlock) {
           const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
           Sampler sampler(scene.settings.sampler, pixel, ~std::uint64_t(0), seed);
-          vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
-          if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) c = vec3(0.0f);
-          for (int y = i; y < std::min(i1, i + kPreviewBlock); ++y)
-            for (int x = j; x < std::min(j1, j + kPreviewBlock); ++x)
-              for (int ch = 0; ch < 3; ++ch)
-                job.preview[(std::size_t(y) * job.width + x) * 3 + ch] = c[ch];
+          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
+          job.film.fill_preview(j, i, std::min(j1, j + kPreviewBlock),
+                                std::min(i1, i + kPreviewBlock), c);
         }
       }
       job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
@@ -263,25 +238,13 @@ void ProgressiveRenderer::run_tiles() {
     for (int i = i0; i < i1; ++i) {
       for (int j = j0; j < j1; ++j) {
         const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
-        // double: a pass may hold many thousands of samples per pixel.
-        glm::dvec3 sum(0.0);
-        double sum_sq = 0.0;
+        PixelSum sum;
         for (int k = 0; k < job.pass_spp; ++k) {
           Sampler sampler(scene.settings.sampler, pixel, job.sample_base + std::uint64_t(k), seed);
-          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
-          if (!std::isfinite(c.x) || !std::isfinite(c.y) || !std::isfinite(c.z)) {
-            ++nans;  // dropped and counted, never accumulated
-            continue;
-          }
-          sum += glm::dvec3(c);
-          const double y = luminance(c);
-          sum_sq += y * y;
+          sum.add(sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats));
         }
-        double* a = &job.acc[std::size_t(pixel) * 3];
-        a[0] += sum.x;
-        a[1] += sum.y;
-        a[2] += sum.z;
-        job.acc_sq[pixel] += sum_sq;
+        job.film.add(pixel, sum);
+        nans += sum.dropped;
       }
     }
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
@@ -307,17 +270,7 @@ void ProgressiveRenderer::end_pass() {
 
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
-  s.width = job.width;
-  s.height = job.height;
-  if (preview) {
-    s.sum = job.preview;
-    s.sum_sq.assign(job.acc_sq.size(), 0.0f);
-  } else {
-    s.sum.resize(job.acc.size());
-    for (std::size_t k = 0; k < job.acc.size(); ++k) s.sum[k] = float(job.acc[k]);
-    s.sum_sq.resize(job.acc_sq.size());
-    for (std::size_t k = 0; k < job.acc_sq.size(); ++k) s.sum_sq[k] = float(job.acc_sq[k]);
-  }
+  job.film.publish(s, preview);
   s.spp = preview ? 1 : job.spp_done;  // the preview shows as one sample
   s.generation = job.generation;
   s.version += 1;

@@ -1,6 +1,6 @@
 // The progressive renderer: worker threads add path-traced samples into a
-// double-precision accumulation buffer, pass after pass; readers (the viewer,
-// the headless mode) take consistent snapshots of it.
+// film (render/film.h), pass after pass; readers (the viewer, the headless
+// mode) take consistent snapshots of it.
 #pragma once
 
 #include <atomic>
@@ -11,39 +11,12 @@
 #include <thread>
 #include <vector>
 
+#include "render/film.h"
 #include "scene/scene.h"
 
 namespace whisker {
 
 class World;
-
-// A consistent copy of the accumulation: sums and count always belong together.
-struct Snapshot {
-  int width = 0, height = 0;
-  std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
-  std::vector<float> sum_sq;  // per-pixel sum of squared luminance (noise estimate)
-  std::uint64_t spp = 0;      // samples per pixel in `sum`
-  std::uint64_t generation = 0;
-  std::uint64_t version = 0;  // bumps with every published pass
-  std::uint64_t passes = 0;
-  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped this generation
-  std::uint64_t rays = 0;       // rays traced this generation
-  double seconds = 0.0;         // render time this generation
-  bool done = false;            // reached the target samples per pixel
-  // A coarse preview of a new generation (one sample per 4x4 block, spp = 1
-  // for display): shown until the first real pass, never accumulated.
-  bool preview = false;
-  std::size_t triangles = 0;  // the scene's geometry, for display
-  std::size_t bvh_nodes = 0;
-
-  // Mean radiance of pixel (x, y), channel c.
-  float mean(int x, int y, int c) const {
-    return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
-  }
-  // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
-  // sum_px mean_px, from the luminance sums of squares.
-  double relative_standard_error() const;
-};
 
 class ProgressiveRenderer {
  public:

@@ -3,11 +3,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "scene/settings.h"
 
 namespace whisker {
 
@@ -22,6 +25,8 @@ struct Material {
   MaterialKind kind = MaterialKind::Diffuse;
   vec3 albedo{1.0f};  // diffuse only
   float ior = 1.5f;   // glass and hollow glass
+
+  bool operator==(const Material&) const = default;
 };
 
 struct SphereObject {
@@ -48,6 +53,8 @@ struct MeshObject {
 struct PointLight {
   vec3 position{-10.0f, 20.0f, 40.0f};
   float intensity = 2e10f;
+
+  bool operator==(const PointLight&) const = default;
 };
 
 struct Camera {
@@ -57,44 +64,10 @@ struct Camera {
   float fov_deg = 60.0f;  // across the image width
   int width = 512;
   int height = 512;
+
+  bool operator==(const Camera&) const = default;
 };
 
-// Where the estimator's random numbers come from: independent uniforms (the
-// report's method) or Owen-scrambled Sobol points.
-enum class SamplerKind : std::uint8_t { Independent, Sobol };
-
-// Acceleration structure for the triangles (issue 4).
-enum class AccelKind : std::uint8_t { Brute, BBox, Midpoint, Sah };
-
-struct RenderSettings {
-  int spp = 1;            // samples per pixel per pass
-  int max_depth = 5;      // bounces after the camera hit (report: getColor(ray, 5))
-  bool indirect = false;  // Monte Carlo diffuse interreflection
-  bool fresnel = false;   // Schlick reflect/refract choice at glass
-  bool aa = false;        // Gaussian pixel jitter, sigma 0.5 px
-  std::uint64_t seed = 0;
-  int target_spp = 0;     // stop accumulating here (0 = never)
-  AccelKind accel = AccelKind::Sah;
-  SamplerKind sampler = SamplerKind::Sobol;
-  bool zero_cutoff = true;  // end paths whose throughput is exactly zero
-  // Splitting (issue 6): at the d-th diffuse hit of a path (d = 0: the
-  // first), split[d] indirect paths leave and their light is averaged; the
-  // path up to there and its direct-light ray are shared by all of them.
-  // Entries past the end are 1; {1} is the report's one path per sample.
-  std::vector<int> split{4, 4};
-  // Per colour channel: a path that still carries the channels C splits
-  // round(split[d] * max over C of split_weights[c]) ways (at least 1), so
-  // effort goes where the image's error is (issue 6: in the report's room
-  // the blue channel holds most of it). Each path's count depends only on
-  // its own past, so the estimate stays unbiased. All 1: plain `split`.
-  vec3 split_weights{1.0f};
-};
-
-// Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
-constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;
-std::string check_split(const std::vector<int>& split);
-// "4,4" from {4, 4}.
-std::string split_to_string(const std::vector<int>& split);
 
 struct Scene {
   std::string name;
@@ -106,12 +79,6 @@ struct Scene {
   RenderSettings settings;
 };
 
-const char* to_string(MaterialKind k);
-const char* to_string(AccelKind k);
-const char* to_string(SamplerKind k);
-// The names above back to values; false for an unknown name.
-bool parse(std::string_view s, MaterialKind& out);
-bool parse(std::string_view s, AccelKind& out);
-bool parse(std::string_view s, SamplerKind& out);
+std::span<const EnumName<MaterialKind>> enum_names(MaterialKind);
 
 }  // namespace whisker

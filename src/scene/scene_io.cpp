@@ -1,17 +1,17 @@
 #include "scene/scene_io.h"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <initializer_list>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
+#include "scene/json_fields.h"
 #include "scene/mesh_io.h"
+#include "scene/settings_json.h"
 
 namespace whisker {
 
@@ -20,119 +20,6 @@ using nlohmann::json;
 
 namespace {
 
-// Reads fields of one JSON object, naming "file: field" in every error.
-class Fields {
- public:
-  Fields(const json& j, std::string path, const std::string& file)
-      : j_(j), path_(std::move(path)), file_(file) {
-    if (!j_.is_object()) fail(path_, "must be an object");
-  }
-
-  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
-    throw SceneError(file_ + ": " + (field.empty() ? "top level" : field) + ": " + what);
-  }
-  std::string field(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
-  }
-
-  void only(std::initializer_list<const char*> allowed) const {
-    for (const auto& [key, value] : j_.items()) {
-      if (std::none_of(allowed.begin(), allowed.end(),
-                       [&](const char* a) { return key == a; })) {
-        std::string list;
-        for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-        fail(field(key), "unknown key (expected one of: " + list + ")");
-      }
-    }
-  }
-
-  bool has(const char* key) const { return j_.contains(key); }
-  const json& at(const char* key) const {
-    if (!j_.contains(key)) fail(field(key), "missing");
-    return j_.at(key);
-  }
-  Fields object(const char* key) const { return Fields(at(key), field(key), file_); }
-
-  double number(const char* key, double lo, double hi) const {
-    const json& v = at(key);
-    if (!v.is_number()) fail(field(key), "must be a number, got " + type(v));
-    const double x = v.get<double>();
-    check_range(field(key), x, lo, hi);
-    return x;
-  }
-  double number(const char* key, double lo, double hi, double fallback) const {
-    return has(key) ? number(key, lo, hi) : fallback;
-  }
-  long long integer(const char* key, long long lo, long long hi, long long fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_number_integer()) fail(field(key), "must be an integer, got " + type(v));
-    const long long x = v.get<long long>();
-    if (x < lo || x > hi)
-      fail(field(key), "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                           "], got " + std::to_string(x));
-    return x;
-  }
-  bool boolean(const char* key, bool fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = at(key);
-    if (!v.is_boolean()) fail(field(key), "must be true or false, got " + type(v));
-    return v.get<bool>();
-  }
-  std::string string(const char* key) const {
-    const json& v = at(key);
-    if (!v.is_string()) fail(field(key), "must be a string, got " + type(v));
-    return v.get<std::string>();
-  }
-  std::string string(const char* key, const std::string& fallback) const {
-    return has(key) ? string(key) : fallback;
-  }
-  vec3 vector(const char* key, double lo, double hi) const {
-    const json& v = at(key);
-    if (!v.is_array() || v.size() != 3)
-      fail(field(key), "must be an array of 3 numbers, got " + type(v));
-    vec3 out;
-    for (int i = 0; i < 3; ++i) {
-      const std::string f = field(key) + "[" + std::to_string(i) + "]";
-      if (!v[i].is_number()) fail(f, "must be a number, got " + type(v[i]));
-      const double x = v[i].get<double>();
-      check_range(f, x, lo, hi);
-      out[i] = float(x);
-    }
-    return out;
-  }
-  vec3 vector(const char* key, double lo, double hi, vec3 fallback) const {
-    return has(key) ? vector(key, lo, hi) : fallback;
-  }
-  vec3 direction(const char* key) const {
-    const vec3 v = vector(key, -1e30, 1e30);
-    if (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f) fail(field(key), "must not be zero-length");
-    return v;
-  }
-  const std::string& file() const { return file_; }
-  const std::string& path() const { return path_; }
-  const json& raw() const { return j_; }
-
- private:
-  static std::string type(const json& v) {
-    if (v.is_number()) return "number " + v.dump();
-    if (v.is_string()) return "string " + v.dump();
-    return v.type_name();
-  }
-  void check_range(const std::string& f, double x, double lo, double hi) const {
-    if (!std::isfinite(x)) fail(f, "must be finite");
-    if (x < lo || x > hi) {
-      std::ostringstream s;
-      s << "must be in [" << lo << ", " << hi << "], got " << x;
-      fail(f, s.str());
-    }
-  }
-
-  const json& j_;
-  std::string path_;
-  const std::string& file_;
-};
-
 constexpr double kBig = 1e7;  // coordinates beyond this lose float precision
 
 Material read_material(const Fields& f) {
@@ -140,8 +27,8 @@ Material read_material(const Fields& f) {
   Material m;
   const std::string type = f.string("type");
   if (!parse(type, m.kind))
-    f.fail(f.field("type"), "unknown material \"" + type +
-                                "\" (expected diffuse, mirror, glass or hollow_glass)");
+    f.fail(f.field("type"), "unknown material \"" + type + "\" (expected " +
+                                name_list(m.kind) + ")");
   if (m.kind == MaterialKind::Diffuse) m.albedo = f.vector("albedo", 0.0, 1.0, vec3(1.0f));
   if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
     m.ior = float(f.number("ior", 1.0, 4.0, 1.5));
@@ -151,6 +38,26 @@ Material read_material(const Fields& f) {
     if (f.has("ior")) f.fail(f.field("ior"), "only glass materials have an ior");
   }
   return m;
+}
+
+void read_camera(const Fields& c, Camera& cam) {
+  c.only({"position", "look_at", "up", "fov", "width", "height"});
+  cam.position = c.vector("position", -kBig, kBig, cam.position);
+  cam.look_at = c.vector("look_at", -kBig, kBig, cam.look_at);
+  if (c.has("up")) cam.up = c.direction("up");
+  cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
+  cam.width = int(c.integer("width", 1, 16384, cam.width));
+  cam.height = int(c.integer("height", 1, 16384, cam.height));
+  // The accumulation holds 32 bytes a pixel (plus a 16-byte snapshot):
+  // 4096 x 4096 is half a gigabyte; beyond that, refuse rather than thrash.
+  constexpr long long kMaxPixels = 4096LL * 4096LL;
+  if ((long long)cam.width * cam.height > kMaxPixels)
+    c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
+                                 " pixels is more than 4096 x 4096");
+  const vec3 fwd = cam.look_at - cam.position;
+  if (fwd == vec3(0.0f)) c.fail(c.field("look_at"), "must differ from camera.position");
+  const vec3 side = glm::cross(fwd, cam.up);
+  if (side == vec3(0.0f)) c.fail(c.field("up"), "must not be parallel to the view direction");
 }
 
 std::string line_column(const std::string& text, std::size_t byte) {
@@ -234,72 +141,14 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   top.only({"name", "camera", "light", "settings", "spheres", "meshes", "description"});
   scene.name = top.string("name", fs::path(file).stem().string());
 
-  if (top.has("camera")) {
-    Fields c = top.object("camera");
-    c.only({"position", "look_at", "up", "fov", "width", "height"});
-    Camera& cam = scene.camera;
-    cam.position = c.vector("position", -kBig, kBig, cam.position);
-    cam.look_at = c.vector("look_at", -kBig, kBig, cam.look_at);
-    if (c.has("up")) cam.up = c.direction("up");
-    cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
-    cam.width = int(c.integer("width", 1, 16384, cam.width));
-    cam.height = int(c.integer("height", 1, 16384, cam.height));
-    // The accumulation holds 32 bytes a pixel (plus a 16-byte snapshot):
-    // 4096 x 4096 is half a gigabyte; beyond that, refuse rather than thrash.
-    constexpr long long kMaxPixels = 4096LL * 4096LL;
-    if ((long long)cam.width * cam.height > kMaxPixels)
-      c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
-                                   " pixels is more than 4096 x 4096");
-    const vec3 fwd = cam.look_at - cam.position;
-    if (fwd == vec3(0.0f)) c.fail(c.field("look_at"), "must differ from camera.position");
-    const vec3 side = glm::cross(fwd, cam.up);
-    if (side == vec3(0.0f)) c.fail(c.field("up"), "must not be parallel to the view direction");
-  }
+  if (top.has("camera")) read_camera(top.object("camera"), scene.camera);
   if (top.has("light")) {
     Fields l = top.object("light");
     l.only({"position", "intensity"});
     scene.light.position = l.vector("position", -kBig, kBig, scene.light.position);
     scene.light.intensity = float(l.number("intensity", 0.0, 1e30, scene.light.intensity));
   }
-  if (top.has("settings")) {
-    Fields s = top.object("settings");
-    s.only({"spp", "max_depth", "indirect", "fresnel", "aa", "seed", "target_spp", "accel",
-            "sampler", "zero_cutoff", "split", "split_weights"});
-    RenderSettings& r = scene.settings;
-    r.spp = int(s.integer("spp", 1, 1 << 20, r.spp));
-    r.max_depth = int(s.integer("max_depth", 0, 1000, r.max_depth));
-    r.indirect = s.boolean("indirect", r.indirect);
-    r.fresnel = s.boolean("fresnel", r.fresnel);
-    r.aa = s.boolean("aa", r.aa);
-    r.seed = std::uint64_t(s.integer("seed", 0, (1LL << 53), (long long)r.seed));
-    r.target_spp = int(s.integer("target_spp", 0, 1 << 30, r.target_spp));
-    if (s.has("accel") && !parse(s.string("accel"), r.accel))
-      s.fail(s.field("accel"), "unknown accel \"" + s.string("accel") +
-                                   "\" (expected brute, bbox, midpoint or sah)");
-    if (s.has("sampler") && !parse(s.string("sampler"), r.sampler))
-      s.fail(s.field("sampler"), "unknown sampler \"" + s.string("sampler") +
-                                     "\" (expected independent or sobol)");
-    r.zero_cutoff = s.boolean("zero_cutoff", r.zero_cutoff);
-    if (s.has("split")) {
-      // An integer (one factor, at the first diffuse hit) or an array of them.
-      const json& v = s.at("split");
-      std::vector<int> split;
-      if (v.is_number_integer()) {
-        split.push_back(int(std::clamp<long long>(v.get<long long>(), INT_MIN, INT_MAX)));
-      } else if (v.is_array()) {
-        for (std::size_t i = 0; i < v.size(); ++i) {
-          if (!v[i].is_number_integer())
-            s.fail(s.field("split") + "[" + std::to_string(i) + "]", "must be an integer");
-          split.push_back(int(std::clamp<long long>(v[i].get<long long>(), INT_MIN, INT_MAX)));
-        }
-      } else {
-        s.fail(s.field("split"), "must be an integer or an array of integers");
-      }
-      if (const std::string why = check_split(split); !why.empty()) s.fail(s.field("split"), why);
-      r.split = split;
-    }
-    r.split_weights = s.vector("split_weights", 0.01, 1.0, r.split_weights);
-  }
+  if (top.has("settings")) read_settings(top.object("settings"), scene.settings);
   if (top.has("spheres")) {
     const json& arr = top.at("spheres");
     if (!arr.is_array()) top.fail("spheres", "must be an array");
@@ -394,12 +243,7 @@ std::string scene_to_json(const Scene& s) {
   j["name"] = s.name;
   j["camera"] = to_json(s.camera);
   j["light"] = {{"position", to_json(s.light.position)}, {"intensity", s.light.intensity}};
-  const RenderSettings& r = s.settings;
-  j["settings"] = {{"spp", r.spp},         {"max_depth", r.max_depth}, {"indirect", r.indirect},
-                   {"fresnel", r.fresnel}, {"aa", r.aa},               {"seed", r.seed},
-                   {"target_spp", r.target_spp}, {"accel", to_string(r.accel)},
-                   {"sampler", to_string(r.sampler)}, {"zero_cutoff", r.zero_cutoff},
-                   {"split", r.split}, {"split_weights", to_json(r.split_weights)}};
+  j["settings"] = settings_to_json(s.settings);
   j["spheres"] = json::array();
   for (const auto& sp : s.spheres) {
     json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", sp.radius},

@@ -4,6 +4,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "render/film.h"
 #include "render/image_io.h"
 #include "scene/scene_io.h"
 #include "viewer/scene_diff.h"
@@ -66,7 +67,7 @@ void Controller::save() {
                             (s.scene_label + "-" + std::to_string(sn.spp) + "spp"))
                                .string();
   try {
-    const Image img = Image::mean_of(sn);
+    const Image img = mean_image(sn);
     write_png(base + ".png", img);
     const std::string float_path = base + (have_exr() ? ".exr" : ".pfm");
     write_float_image(float_path, img);

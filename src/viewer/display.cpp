@@ -8,19 +8,8 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
-#include <unistd.h>
 
 #include <glad/gl.h>
-
-// A private copy of stb's PNG writer: static, so it never clashes with the
-// core's image writer.
-#define STB_IMAGE_WRITE_STATIC
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include <stb_image_write.h>
-#pragma GCC diagnostic pop
 
 namespace whisker {
 
@@ -210,7 +199,8 @@ void Display::map_to_cache(float spp, const DisplayParams& p) {
   glUniform1f(loc_exposure_, p.exposure);
   glUniform1f(loc_gamma_, p.gamma);
   glUniform1i(loc_mode_, p.mode);
-  glUniform3f(loc_lum_, kLumWeights[0], kLumWeights[1], kLumWeights[2]);
+  glUniform3f(loc_lum_, float(kLuminanceWeights[0]), float(kLuminanceWeights[1]),
+              float(kLuminanceWeights[2]));
   glBindVertexArray(vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
@@ -242,19 +232,6 @@ std::vector<unsigned char> read_framebuffer(int width, int height) {
     std::copy_n(rows.data() + std::size_t(height - 1 - y) * stride, stride,
                 out.data() + std::size_t(y) * stride);
   return out;
-}
-
-bool write_png_rgb8(const std::string& path, int width, int height,
-                    const std::vector<unsigned char>& rgb) {
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  if (!stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3)) {
-    std::remove(tmp.c_str());
-    return false;
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) std::remove(tmp.c_str());
-  return !ec;
 }
 
 }  // namespace whisker

@@ -9,9 +9,6 @@
 
 namespace whisker {
 
-// Luminance weights of Snapshot::sum_sq (Rec. 709).
-inline constexpr float kLumWeights[3] = {0.2126f, 0.7152f, 0.0722f};
-
 struct DisplayParams {
   float exposure = 1.0f;  // linear scale
   float gamma = 2.2f;
@@ -65,9 +62,6 @@ PixelRect fit_image(const PixelRect& area, int image_w, int image_h);
 
 // Reads the back buffer (RGB, row 0 at the top).
 std::vector<unsigned char> read_framebuffer(int width, int height);
-// Writes 8-bit RGB as PNG through a temporary file renamed into place.
-bool write_png_rgb8(const std::string& path, int width, int height,
-                    const std::vector<unsigned char>& rgb);
 
 // The folder holding display.vert/.frag: $WHISKER_SHADERS, next to the
 // executable, or the source tree's shaders/.

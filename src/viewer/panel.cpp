@@ -68,17 +68,22 @@ static void stats(ViewerState& s, double now) {
 }
 
 static bool material_editor(Material& m, float* radius, float* inner_radius) {
-  static const char* kinds[] = {"diffuse", "mirror", "glass", "hollow glass"};
   bool changed = false;
-  int kind = int(m.kind);
-  const int n_kinds = inner_radius ? 4 : 3;  // meshes have no hollow variant
-  if (ImGui::Combo("material", &kind, kinds, n_kinds)) {
-    m.kind = MaterialKind(kind);
+  if (ImGui::BeginCombo("material", to_string(m.kind))) {
+    for (const auto& [kind, name] : enum_names(m.kind)) {
+      if (kind == MaterialKind::HollowGlass && !inner_radius) continue;  // spheres only
+      if (ImGui::Selectable(name, kind == m.kind) && kind != m.kind) {
+        m.kind = kind;
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (changed) {
     // A hollow sphere needs a bubble: the report's 9.8 inside 10.
     if (inner_radius && m.kind == MaterialKind::HollowGlass && radius &&
         (*inner_radius <= 0.0f || *inner_radius >= *radius))
       *inner_radius = 0.98f * *radius;
-    changed = true;
   }
   if (m.kind == MaterialKind::Diffuse)
     changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
@@ -88,6 +93,18 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
     changed |= ImGui::DragFloat("bubble radius", inner_radius, 0.02f, 0.0f,
                                 *radius, "%.2f");
   return changed;
+}
+
+// A checkbox per boolean setting of the table, its help as the tooltip.
+static void setting_checkboxes(RenderSettings& r) {
+  int boxes = 0;
+  for (const SettingField& f : setting_fields()) {
+    if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
+      if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
+      ImGui::Checkbox(f.key, &(r.*(*m)));
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
+    }
+  }
 }
 
 // Pause, restart and save, and the last load / save message.
@@ -142,11 +159,7 @@ static void light_section(PointLight& light) {
 // The render settings' own widgets, one per setting, in one row of
 // checkboxes and then sliders.
 static void settings_widgets(RenderSettings& r) {
-  ImGui::Checkbox("Fresnel", &r.fresnel);
-  ImGui::SameLine();
-  ImGui::Checkbox("indirect", &r.indirect);
-  ImGui::SameLine();
-  ImGui::Checkbox("anti-aliasing", &r.aa);
+  setting_checkboxes(r);
   ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
   ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
 }
@@ -166,7 +179,8 @@ static void split_widgets(RenderSettings& r) {
     ImGui::EndCombo();
   }
   // Channel weights of the split (RenderSettings::split_weights).
-  ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, 0.01f, 1.0f, "%.2f",
+  const SettingField& w = setting_field("split_weights");
+  ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, float(w.lo), float(w.hi), "%.2f",
                       ImGuiSliderFlags_AlwaysClamp);
 }
 

@@ -14,8 +14,4 @@ enum class SceneChange {
 
 SceneChange classify_change(const Scene& before, const Scene& after);
 
-bool same_material(const Material& a, const Material& b);
-bool same_camera(const Camera& a, const Camera& b);
-bool same_settings(const RenderSettings& a, const RenderSettings& b);
-
 }  // namespace whisker

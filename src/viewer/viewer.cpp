@@ -16,7 +16,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include "render/image_io.h"
 #include "render/progressive.h"
+#include "render/stats_io.h"
 #include "scene/scene_io.h"
 #include "viewer/controller.h"
 #include "viewer/display.h"
@@ -43,51 +45,37 @@ struct FrameStats {
   }
 };
 
-// JSON has no inf/nan: those become null.
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-// A summary next to a scripted screenshot (<screenshot>.json): where the
-// render area is, what was rendered, how fast the UI ran.
+// A summary next to a scripted screenshot (<screenshot>.json): what was
+// rendered (the shared stats record), where the render area is, how fast the
+// UI ran.
 void write_summary(const std::string& path, const PixelRect& r, const ViewerState& s,
                    const FrameStats& f, int fb_w, int fb_h) {
-  FILE* out = std::fopen(path.c_str(), "w");
-  if (!out) return;
-  const double secs = s.snap.seconds;
-  std::fprintf(out,
-               "{\n  \"framebuffer\": [%d, %d],\n  \"render_rect\": [%d, %d, %d, %d],\n"
-               "  \"image\": [%d, %d],\n  \"scene\": \"%s\",\n  \"spp\": %llu,\n"
-               "  \"passes\": %llu,\n  \"generation\": %llu,\n  \"nan_count\": %llu,\n"
-               "  \"render_seconds\": %.4f,\n  \"passes_per_second\": %.4f,\n"
-               "  \"rays_per_second\": %.1f,\n  \"rel_std_error\": %s,\n"
-               "  \"ui_frames\": %zu,\n  \"ui_frame_ms_mean\": %.3f,\n"
-               "  \"ui_frame_ms_p95\": %.3f,\n  \"ui_frame_ms_max\": %.3f,\n"
-               "  \"ui_frame_work_ms_mean\": %.3f\n}\n",
-               fb_w, fb_h, r.x, r.y, r.w, r.h, s.snap.width, s.snap.height,
-               s.scene_label.c_str(), (unsigned long long)s.snap.spp,
-               (unsigned long long)s.snap.passes, (unsigned long long)s.snap.generation,
-               (unsigned long long)s.snap.nan_count, secs,
-               secs > 0 ? s.snap.passes / secs : 0.0, secs > 0 ? s.snap.rays / secs : 0.0,
-               json_number(s.rse).c_str(), f.total_ms.size(), FrameStats::mean(f.total_ms),
-               FrameStats::pct(f.total_ms, 0.95),
-               f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end()),
-               FrameStats::mean(f.work_ms));
-  std::fclose(out);
+  using V = std::vector<long long>;
+  RenderStats st{s.scene_label, &s.snap, s.threads, &s.applied.settings, {}};
+  const float max_ms =
+      f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end());
+  st.extra = {{"framebuffer", V{fb_w, fb_h}},
+              {"render_rect", V{r.x, r.y, r.w, r.h}},
+              {"ui_frames", (long long)f.total_ms.size()},
+              {"ui_frame_ms_mean", double(FrameStats::mean(f.total_ms))},
+              {"ui_frame_ms_p95", double(FrameStats::pct(f.total_ms, 0.95))},
+              {"ui_frame_ms_max", double(max_ms)},
+              {"ui_frame_work_ms_mean", double(FrameStats::mean(f.work_ms))}};
+  write_stats_json(path, st);
 }
 
-// Reads the back buffer into the screenshot and its summary; false if the
-// PNG cannot be written.
+// Reads the back buffer into the screenshot and its summary; false (with a
+// message) if either cannot be written.
 bool take_screenshot(const std::string& path, const PixelRect& rect, const ViewerState& s,
                      const FrameStats& f, int fb_w, int fb_h) {
-  const auto pixels = read_framebuffer(fb_w, fb_h);
-  const bool ok = write_png_rgb8(path, fb_w, fb_h, pixels);
-  if (!ok) std::fprintf(stderr, "whisker: cannot write %s\n", path.c_str());
-  write_summary(path + ".json", rect, s, f, fb_w, fb_h);
-  return ok;
+  try {
+    write_png_rgb8(path, fb_w, fb_h, read_framebuffer(fb_w, fb_h));
+    write_summary(path + ".json", rect, s, f, fb_w, fb_h);
+    return true;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "whisker: %s\n", e.what());
+    return false;
+  }
 }
 
 // The window's size this frame: framebuffer pixels and window units.

@@ -1,0 +1,46 @@
+// The command line: options, their checks and how they override a scene.
+// The render-settings options come from the settings table (scene/settings.h).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace whisker {
+
+inline constexpr int kUsageError = 2;  // bad option, bad scene, unwritable output
+
+struct CommandLine {
+  bool headless = false;
+  std::string scene_name = "cat";
+  std::string mesh;
+  int frames = 0;
+  int threads = 0;
+  // The settings options given, and their values in `settings`.
+  std::vector<const SettingField*> given;
+  RenderSettings settings;
+  std::string light;
+  std::optional<float> intensity;
+  std::string out_png, out_float, stats_json, screenshot;
+  int edit_after = -1;
+  std::string edit_light;
+  bool quiet = false;
+};
+
+// Parses argv into `out`. Returns an exit code when the run ends here (--help,
+// --version, a bad option: message printed), else nullopt.
+std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out);
+
+// Applies the given options over the scene file's values; returns what is
+// wrong ("" if nothing), a one-line message naming the option.
+std::string apply_command_line(const CommandLine& cl, Scene& scene);
+
+// Checks the output paths and the options that go together.
+std::string check_outputs(const CommandLine& cl, const RenderSettings& settings);
+
+// Prints "whisker: MESSAGE" to stderr; returns kUsageError.
+int usage_error(const std::string& message);
+
+}  // namespace whisker

@@ -1,0 +1,107 @@
+// The film: where samples land. A double-precision accumulation of RGB sums
+// and luminance sums of squares per pixel, the policy for samples that are
+// not finite, and the snapshots readers take of it (with the noise estimate).
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "render/image.h"
+
+namespace whisker {
+
+// Rec. 709 luminance weights: the noise estimate, the viewer's noise view.
+inline constexpr double kLuminanceWeights[3] = {0.2126, 0.7152, 0.0722};
+
+inline float luminance(const glm::vec3& c) {
+  return float(kLuminanceWeights[0]) * c.x + float(kLuminanceWeights[1]) * c.y +
+         float(kLuminanceWeights[2]) * c.z;
+}
+
+// The NaN policy: a sample with a non-finite channel is never accumulated;
+// it is dropped and counted (Snapshot::nan_count). A preview shows it black.
+inline bool finite_sample(const glm::vec3& c) {
+  return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
+}
+
+// A consistent copy of the accumulation: sums and count always belong together.
+struct Snapshot {
+  int width = 0, height = 0;
+  std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
+  std::vector<float> sum_sq;  // per-pixel sum of squared luminance (noise estimate)
+  std::uint64_t spp = 0;      // samples per pixel in `sum`
+  std::uint64_t generation = 0;
+  std::uint64_t version = 0;  // bumps with every published pass
+  std::uint64_t passes = 0;
+  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped this generation
+  std::uint64_t rays = 0;       // rays traced this generation
+  double seconds = 0.0;         // render time this generation
+  bool done = false;            // reached the target samples per pixel
+  // A coarse preview of a new generation (one sample per 4x4 block, spp = 1
+  // for display): shown until the first real pass, never accumulated.
+  bool preview = false;
+  std::size_t triangles = 0;  // the scene's geometry, for display
+  std::size_t bvh_nodes = 0;
+
+  // Mean radiance of pixel (x, y), channel c.
+  float mean(int x, int y, int c) const {
+    return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
+  }
+  // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
+  // sum_px mean_px, from the luminance sums of squares.
+  double relative_standard_error() const;
+};
+
+// The mean radiance image of a snapshot.
+Image mean_image(const Snapshot& s);
+
+// One pixel's samples of a pass, in arrival order; double, since a pass may
+// hold many thousands of samples per pixel.
+struct PixelSum {
+  glm::dvec3 sum{0.0};
+  double sum_sq = 0.0;
+  std::uint64_t dropped = 0;  // non-finite samples
+
+  void add(const glm::vec3& c) {
+    if (!finite_sample(c)) {
+      ++dropped;  // dropped and counted, never accumulated
+      return;
+    }
+    sum += glm::dvec3(c);
+    const double y = luminance(c);
+    sum_sq += y * y;
+  }
+};
+
+// The accumulation of one generation; pixels are written by one thread each.
+class Film {
+ public:
+  // Clears to black at the given size; with `preview`, also a preview image.
+  void reset(int width, int height, bool preview);
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  void add(std::uint32_t pixel, const PixelSum& p) {
+    double* a = &acc_[std::size_t(pixel) * 3];
+    a[0] += p.sum.x;
+    a[1] += p.sum.y;
+    a[2] += p.sum.z;
+    acc_sq_[pixel] += p.sum_sq;
+  }
+  // The preview's pixels [x0, x1) x [y0, y1) show c (black if not finite).
+  void fill_preview(int x0, int y0, int x1, int y1, glm::vec3 c);
+
+  // Copies the sums (or the preview, shown as one sample) into `s`.
+  void publish(Snapshot& s, bool preview) const;
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<double> acc_;     // RGB sums, double so millions of samples keep their digits
+  std::vector<double> acc_sq_;  // luminance sums of squares
+  std::vector<float> preview_;  // the coarse preview pass's image
+};
+
+}  // namespace whisker

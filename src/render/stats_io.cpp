@@ -1,0 +1,44 @@
+#include "render/stats_io.h"
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "render/image_io.h"
+#include "scene/settings_json.h"
+
+namespace whisker {
+
+void write_stats_json(const std::string& path, const RenderStats& st) {
+  const Snapshot& snap = *st.snap;
+  const double secs = snap.seconds;
+  const double paths = double(snap.width) * snap.height * double(snap.spp);
+  nlohmann::json j = {
+      {"scene", st.scene},
+      {"width", snap.width},
+      {"height", snap.height},
+      {"spp", snap.spp},
+      {"passes", snap.passes},
+      {"generation", snap.generation},
+      {"seconds", secs},
+      {"passes_per_s", secs > 0 ? double(snap.passes) / secs : 0.0},
+      {"paths_per_s", secs > 0 ? paths / secs : 0.0},
+      {"rays", snap.rays},
+      {"rays_per_s", secs > 0 ? double(snap.rays) / secs : 0.0},
+      {"nan_count", snap.nan_count},
+      {"threads", st.threads},
+      // A preview has no noise estimate; nlohmann writes NaN and Inf as null.
+      {"relative_standard_error", snap.preview ? NAN : snap.relative_standard_error()},
+  };
+  if (st.settings) j["settings"] = settings_to_json(*st.settings);
+  for (const auto& [key, value] : st.extra)
+    std::visit([&, &key = key](const auto& v) { j[key] = v; }, value);
+  write_file_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << j.dump(2) << "\n";
+    out.close();
+    return bool(out);
+  });
+}
+
+}  // namespace whisker

@@ -1,0 +1,174 @@
+#include "scene/settings.h"
+
+#include <charconv>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+namespace whisker {
+
+namespace {
+
+constexpr EnumName<SamplerKind> kSamplers[] = {{SamplerKind::Independent, "independent"},
+                                               {SamplerKind::Sobol, "sobol"}};
+constexpr EnumName<AccelKind> kAccels[] = {{AccelKind::Brute, "brute"},
+                                           {AccelKind::BBox, "bbox"},
+                                           {AccelKind::Midpoint, "midpoint"},
+                                           {AccelKind::Sah, "sah"}};
+
+using R = RenderSettings;
+
+// The table. A seed is read from JSON as a double, so the file keeps it to
+// 2^53; the command line takes any 64-bit value.
+const SettingField kFields[] = {
+    {"spp", "--spp", &R::spp, "Samples per pixel per pass", 1, 1 << 20, 1 << 16},
+    {"max_depth", "--depth", &R::max_depth, "Max bounces after the camera hit", 0, 1000},
+    {"indirect", "--indirect", &R::indirect, "Indirect light"},
+    {"fresnel", "--fresnel", &R::fresnel, "Fresnel at glass"},
+    {"aa", "--aa", &R::aa, "Anti-aliasing (Gaussian jitter)"},
+    {"seed", "--seed", &R::seed, "Random seed", 0, 0x1p53},
+    {"target_spp", "--target-spp", &R::target_spp, "Viewer: stop at this many samples per pixel",
+     0, 1 << 30},
+    {"accel", "--accel", &R::accel, "Triangle acceleration"},
+    {"sampler", "--sampler", &R::sampler, "Random numbers: independent (the report's) or sobol"},
+    {"zero_cutoff", "--zero-cutoff", &R::zero_cutoff, "End paths whose throughput is zero"},
+    {"split", "--split", &R::split,
+     "Indirect paths leaving the 1st, 2nd, ... diffuse hit (1 = the report's)", 0, 0, 0, "4,4"},
+    {"split_weights", "--split-weights", &R::split_weights,
+     "Per channel r,g,b: paths that carry only low-weight channels split less", 0.01, 1.0, 0,
+     "0.5,0.25,1"},
+};
+
+std::string bounds(double lo, double hi) {
+  std::ostringstream s;
+  s << std::setprecision(12) << "[" << lo << ", " << hi << "]";
+  return s.str();
+}
+
+template <class T>
+std::string integer_from_text(const SettingField& f, std::string_view text, T& out) {
+  T v{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
+    return "expected an integer";
+  const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
+  if constexpr (std::is_signed_v<T>) {
+    if (double(v) < f.lo || double(v) > hi)
+      return "must be in " + bounds(f.lo, hi) + ", got " + std::string(text);
+  }
+  out = v;
+  return {};
+}
+
+std::string split_from_text(const SettingField& f, std::string_view text, std::vector<int>& out) {
+  std::vector<int> factors;
+  std::istringstream in{std::string(text)};
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    int k = 0;
+    try {
+      k = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      return std::string("expected integers separated by commas, e.g. ") + f.example;
+    factors.push_back(k);
+  }
+  if (std::string why = check_split(factors); !why.empty()) return why;
+  out = factors;
+  return {};
+}
+
+template <NamedEnum E>
+std::string enum_from_text(std::string_view text, E& out) {
+  return parse(text, out) ? std::string() : "expected " + name_list(out);
+}
+
+}  // namespace
+
+std::span<const EnumName<SamplerKind>> enum_names(SamplerKind) { return kSamplers; }
+std::span<const EnumName<AccelKind>> enum_names(AccelKind) { return kAccels; }
+
+std::span<const SettingField> setting_fields() { return kFields; }
+
+const SettingField& setting_field(std::string_view key) {
+  for (const SettingField& f : kFields)
+    if (key == f.key) return f;
+  throw std::logic_error("no render setting \"" + std::string(key) + "\"");
+}
+
+std::optional<vec3> parse_vec3(std::string_view text) {
+  std::istringstream in{std::string(text)};
+  vec3 v;
+  char c1 = 0, c2 = 0;
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',') return std::nullopt;
+  in >> std::ws;
+  if (!in.eof() || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+    return std::nullopt;
+  return v;
+}
+
+std::string set_from_text(const SettingField& f, std::string_view text, RenderSettings& s) {
+  struct Visit {
+    const SettingField& f;
+    std::string_view text;
+    RenderSettings& s;
+    std::string operator()(bool R::*m) const {
+      if (text != "on" && text != "off") return "expected on or off";
+      s.*m = text == "on";
+      return {};
+    }
+    std::string operator()(int R::*m) const { return integer_from_text(f, text, s.*m); }
+    std::string operator()(std::uint64_t R::*m) const { return integer_from_text(f, text, s.*m); }
+    std::string operator()(AccelKind R::*m) const { return enum_from_text(text, s.*m); }
+    std::string operator()(SamplerKind R::*m) const { return enum_from_text(text, s.*m); }
+    std::string operator()(std::vector<int> R::*m) const { return split_from_text(f, text, s.*m); }
+    std::string operator()(vec3 R::*m) const {
+      const auto v = parse_vec3(text);
+      for (int c = 0; v && c < 3; ++c)
+        if ((*v)[c] < float(f.lo) || (*v)[c] > float(f.hi))
+          return "expected three numbers r,g,b in " + bounds(f.lo, f.hi) + ", e.g. " + f.example;
+      if (!v)
+        return "expected three numbers r,g,b in " + bounds(f.lo, f.hi) + ", e.g. " + f.example;
+      s.*m = *v;
+      return {};
+    }
+  };
+  return std::visit(Visit{f, text, s}, f.member);
+}
+
+void copy_field(const SettingField& f, const RenderSettings& from, RenderSettings& to) {
+  std::visit([&](auto m) { to.*m = from.*m; }, f.member);
+}
+
+std::string check_split(const std::vector<int>& split) {
+  if (split.empty()) return "must hold at least one factor";
+  if (split.size() > std::size_t(kMaxSplitLevels))
+    return "at most " + std::to_string(kMaxSplitLevels) + " factors, got " +
+           std::to_string(split.size());
+  long long paths = 1;
+  for (int k : split) {
+    if (k < 1 || k > kMaxSplitFactor)
+      return "factors must be in [1, " + std::to_string(kMaxSplitFactor) + "], got " +
+             std::to_string(k);
+    paths *= k;
+  }
+  if (paths > kMaxSplitPaths)
+    return "the factors' product (paths per sample) must be at most " +
+           std::to_string(kMaxSplitPaths) + ", got " + std::to_string(paths);
+  return {};
+}
+
+std::string split_to_string(const std::vector<int>& split) {
+  std::string s;
+  for (int k : split) {
+    if (!s.empty()) s += ',';
+    s += std::to_string(k);
+  }
+  return s;
+}
+
+}  // namespace whisker
