@@ -2,12 +2,17 @@
 // camera moves, and which keys and mouse states give which action.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "render/progressive.h"
+#include "scene/scene_io.h"
 #include "viewer/camera_control.h"
+#include "viewer/controller.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/scene_diff.h"
@@ -225,4 +230,85 @@ TEST(InputMapping, RightDragPansAndWheelDollies) {
   wheel.wheel = 1.0f;
   MouseCamera().update(d, wheel, 1.0f);
   EXPECT_NEAR(d.position.z, 55.0f * 0.9f, 1e-4f);
+}
+
+TEST(TargetSpp, OnlyARaiseCarriesOn) {
+  Scene a = three_balls();
+  a.settings.target_spp = 16;
+  Scene b = a;
+  b.settings.target_spp = 48;
+  EXPECT_TRUE(only_target_raised(a, b));
+  b.settings.target_spp = 0;  // never stop
+  EXPECT_TRUE(only_target_raised(a, b));
+  b.settings.target_spp = 8;  // lowered: restart for exactly 8
+  EXPECT_FALSE(only_target_raised(a, b));
+  b.settings.target_spp = 48;
+  b.settings.fresnel = !a.settings.fresnel;  // with another edit: restart
+  EXPECT_FALSE(only_target_raised(a, b));
+  a.settings.target_spp = 0;  // from "never stop" to a number: restart
+  b = a;
+  b.settings.target_spp = 64;
+  EXPECT_FALSE(only_target_raised(a, b));
+}
+
+// Raising the target after it was reached renders more passes in the same
+// generation, and the result is the same image as a render to the higher
+// target from the start (samples are indexed, so nothing repeats).
+TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 40;
+  s.camera.height = 32;
+  s.settings.indirect = s.settings.aa = true;
+  s.settings.spp = 2;
+  s.settings.target_spp = 4;
+
+  ProgressiveRenderer r(2);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 4));
+  Snapshot first;
+  r.snapshot(first);
+  EXPECT_TRUE(first.done);
+  r.set_target_spp(10);
+  ASSERT_TRUE(r.wait_for(gen, 10));
+  Snapshot more;
+  r.snapshot(more);
+  r.stop();
+  EXPECT_EQ(more.generation, gen);
+  EXPECT_EQ(more.spp, 10u);
+  EXPECT_EQ(more.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
+  EXPECT_TRUE(more.done);
+
+  s.settings.target_spp = 10;
+  ProgressiveRenderer fresh(2);
+  const std::uint64_t g2 = fresh.set_scene(s);
+  fresh.start();
+  ASSERT_TRUE(fresh.wait_for(g2, 10));
+  Snapshot ref;
+  fresh.snapshot(ref);
+  fresh.stop();
+  EXPECT_EQ(more.sum, ref.sum);
+  EXPECT_EQ(more.sum_sq, ref.sum_sq);
+}
+
+// A pass reports its tiles as they finish; between passes nothing runs.
+TEST(TargetSpp, PassProgressCountsTiles) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 70;  // 3 x 2 tiles of 32
+  s.camera.height = 40;
+  s.settings.spp = 1;
+  s.settings.target_spp = 2;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 2));
+  // Done: the workers wait, so the progress is "not rendering".
+  for (int k = 0; k < 100 && r.pass_progress().rendering; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto p = r.pass_progress();
+  r.stop();
+  EXPECT_FALSE(p.rendering);
+  EXPECT_EQ(p.generation, gen);
+  EXPECT_EQ(p.tiles_total, 6);
+  EXPECT_EQ(p.tiles_done, 6);
 }

@@ -16,7 +16,21 @@ std::string scene_label_of(const Scene& scene, const std::string& path) {
   return "scene";
 }
 
+bool only_target_raised(const Scene& applied, const Scene& edited) {
+  const int before = applied.settings.target_spp, after = edited.settings.target_spp;
+  if (before == after || before <= 0 || (after > 0 && after < before)) return false;
+  Scene same = applied;
+  same.settings.target_spp = after;
+  return classify_change(same, edited) == SceneChange::None;
+}
+
 void Controller::apply_edits(double now) {
+  if (only_target_raised(s.applied, s.edited)) {
+    // More samples of the same image: the accumulation carries on.
+    renderer.set_target_spp(s.edited.settings.target_spp);
+    s.applied = s.edited;
+    return;
+  }
   switch (classify_change(s.applied, s.edited)) {
     case SceneChange::None:
       return;
@@ -87,7 +101,9 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.threads = renderer.threads();
   }
   if (!req.load_scene.empty()) load(req.load_scene, now);
-  apply_edits(now);
+  // A number being typed applies when its field lets go of the keyboard
+  // (Enter, Tab, a click elsewhere), not at every keystroke.
+  if (!req.typing) apply_edits(now);
   if (req.restart) restart(now);
   if (req.toggle_pause) {
     s.paused = !s.paused;

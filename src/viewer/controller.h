@@ -12,6 +12,10 @@ namespace whisker {
 // The scene's name, else the file's stem, else "scene".
 std::string scene_label_of(const Scene& scene, const std::string& path);
 
+// True if the edit only raises the target samples per pixel (or lifts it to
+// 0 = never stop): the render goes on instead of restarting.
+bool only_target_raised(const Scene& applied, const Scene& edited);
+
 struct Controller {
   ProgressiveRenderer& renderer;
   ViewerState& s;

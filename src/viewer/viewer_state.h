@@ -21,6 +21,7 @@ struct PanelRequests {
   bool quit = false;
   std::string load_scene;  // name or path
   int threads = 0;         // > 0: new thread count
+  bool typing = false;     // a text field has the keyboard: hold the edits
 };
 
 struct ViewerState {
