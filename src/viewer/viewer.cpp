@@ -174,6 +174,7 @@ struct Session {
     const PixelRect rect = fit_image(area, img_w, img_h);
 
     map_keys(read_keys(), imgui_wants_keyboard(), req);
+    req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
     mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);
@@ -233,13 +234,14 @@ struct Session {
       script.apply_due_edit(s);
       const FrameSize f = frame_size(window);
       const PixelRect rect = panel_and_input(f, t0);
-      const bool finish = script.finished(s);
+      // Without --screenshot the window stays open after --frames passes
+      // (the target stops the render there).
+      const bool finish = !opt.screenshot_path.empty() && script.finished(s);
       update_title();
       render(f, rect);
 
       const double t_work = glfwGetTime();
-      if (finish && !opt.screenshot_path.empty() &&
-          !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
+      if (finish && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
         exit_code = 1;
       glfwSwapBuffers(window);
       record_timing(t0, t_work, glfwGetTime(), finish);
