@@ -3,9 +3,13 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <stdexcept>
+#include <vector>
 
 #include "render/image_io.h"
 #include "scene/scene_io.h"
+#include "viewer/display.h"
+#include "viewer/readout.h"
 #include "viewer/scene_diff.h"
 
 namespace whisker {
@@ -24,7 +28,27 @@ bool only_target_raised(const Scene& applied, const Scene& edited) {
   return classify_change(same, edited) == SceneChange::None;
 }
 
+bool only_idle_fresnel(const Scene& applied, const Scene& edited) {
+  if (applied.settings.fresnel == edited.settings.fresnel) return false;
+  for (const SphereObject& sp : edited.spheres)
+    if (sp.material.kind == MaterialKind::Glass || sp.material.kind == MaterialKind::HollowGlass)
+      return false;
+  for (const MeshObject& m : edited.meshes)
+    if (m.material.kind == MaterialKind::Glass || m.material.kind == MaterialKind::HollowGlass)
+      return false;
+  Scene same = applied;
+  same.settings.fresnel = edited.settings.fresnel;
+  return classify_change(same, edited) == SceneChange::None;
+}
+
 void Controller::apply_edits(double now) {
+  if (only_idle_fresnel(s.applied, s.edited)) {
+    // Fresnel acts on glass only (it draws no random number elsewhere): the
+    // image would be the same, so the render goes on. The next real edit
+    // hands the renderer all settings.
+    s.applied = s.edited;
+    return;
+  }
   if (only_target_raised(s.applied, s.edited)) {
     // More samples of the same image: the accumulation carries on.
     renderer.set_target_spp(s.edited.settings.target_spp);
@@ -76,15 +100,24 @@ void Controller::save() {
     s.message_is_error = true;
     return;
   }
-  const std::string base = (std::filesystem::path(s.save_dir) /
-                            (s.scene_label + "-" + std::to_string(sn.spp) + "spp"))
-                               .string();
+  namespace fs = std::filesystem;
   try {
+    const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
+    fs::create_directories(dir);
+    const std::string wanted =
+        s.save_name.empty() ? s.scene_label + "-" + std::to_string(sn.spp) + "spp" : s.save_name;
+    const std::string float_ext = have_exr() ? ".exr" : ".pfm";
+    // Never overwrite: the first free name, and the panel says which.
+    const std::string stem = free_stem(dir, wanted, {".png", float_ext});
+    const std::string base = (fs::path(dir) / stem).string();
+    // The PNG is what the window shows: exposure, tone curve, gamma, view.
+    const std::vector<unsigned char> rgb = map_like_display(sn, s.display);
+    if (!write_png_rgb8(base + ".png", sn.width, sn.height, rgb))
+      throw std::runtime_error("cannot write " + base + ".png");
     const Image img = Image::mean_of(sn);
-    write_png(base + ".png", img);
-    const std::string float_path = base + (have_exr() ? ".exr" : ".pfm");
-    write_float_image(float_path, img);
-    s.message = "saved " + base + ".png and " + float_path;
+    write_float_image(base + float_ext, img);
+    s.message = "saved " + base + ".png (as shown) and " + base + float_ext + " (radiance)";
+    if (stem != wanted) s.message += "; " + wanted + " was taken, so the name is " + stem;
     s.message_is_error = false;
     std::printf("%s\n", s.message.c_str());
     std::fflush(stdout);
@@ -92,6 +125,21 @@ void Controller::save() {
     s.message = std::string("save failed: ") + e.what();
     s.message_is_error = true;
   }
+}
+
+void Controller::hold() {
+  if (s.snap.spp == 0 || s.snap.preview) {
+    s.message = "nothing to hold yet";
+    s.message_is_error = true;
+    return;
+  }
+  s.held = s.snap;
+  const RenderSettings& r = s.applied.settings;
+  s.held_note = std::to_string(s.snap.spp) + " spp, Fresnel " + (r.fresnel ? "on" : "off") +
+                ", indirect " + (r.indirect ? "on" : "off");
+  if (s.compare == kCompareOff) s.compare = kCompareWipe;
+  s.message = "holding the image (" + s.held_note + ") for comparison";
+  s.message_is_error = false;
 }
 
 void Controller::carry_out(const PanelRequests& req, double now) {
@@ -110,6 +158,7 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     renderer.set_paused(s.paused);
   }
   if (req.save) save();
+  if (req.hold) hold();
   if (req.print_camera) {
     std::printf("%s\n", camera_to_json(s.applied.camera).c_str());
     std::fflush(stdout);

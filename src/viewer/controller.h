@@ -16,6 +16,10 @@ std::string scene_label_of(const Scene& scene, const std::string& path);
 // 0 = never stop): the render goes on instead of restarting.
 bool only_target_raised(const Scene& applied, const Scene& edited);
 
+// True if the edit only switches Fresnel in a scene without glass: the image
+// cannot change, so nothing restarts.
+bool only_idle_fresnel(const Scene& applied, const Scene& edited);
+
 struct Controller {
   ProgressiveRenderer& renderer;
   ViewerState& s;
@@ -26,8 +30,11 @@ struct Controller {
   void restart(double now);
   // Loads a bundled scene by name or a scene file; errors go to the panel.
   void load(const std::string& name_or_path, double now);
-  // Writes the current mean as PNG and EXR (or PFM) into s.save_dir.
+  // Writes the image as shown (PNG) and its radiance (EXR, or PFM) into
+  // s.save_dir, under a name that overwrites nothing.
   void save();
+  // Keeps the current image for the A/B comparison.
+  void hold();
   // Carries out the panel's and the keys' requests, except quitting.
   void carry_out(const PanelRequests& req, double now);
 };

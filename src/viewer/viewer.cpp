@@ -21,6 +21,7 @@
 #include "viewer/controller.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
+#include "viewer/overlay.h"
 #include "viewer/script.h"
 #include "viewer/viewer_state.h"
 #include "viewer/window.h"
@@ -113,6 +114,7 @@ struct Session {
   const ViewerOptions& opt;
   GLFWwindow* window;
   Display& display;
+  Display& held_display;  // the A/B comparison's held image
   ProgressiveRenderer& renderer;
   ViewerState& s;
   float panel_w;  // window units
@@ -124,6 +126,7 @@ struct Session {
   double last_frame = -1.0;
   std::uint64_t rse_generation = 0;
   std::uint64_t title_spp = ~0ull;
+  std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -163,6 +166,7 @@ struct Session {
     ImGui::NewFrame();
 
     PanelRequests req;
+    s.progress = renderer.pass_progress();
     const float panel = std::min(panel_w, f.win_w);
     draw_panel(s, f.win_w, f.win_h, panel, t0, req);
 
@@ -181,6 +185,15 @@ struct Session {
 
     ctl.carry_out(req, t0);
     if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (s.held.spp > 0 && s.held.version != held_uploaded) {
+      held_display.upload(s.held, true);
+      held_uploaded = s.held.version;
+    }
+    // Over the image: legend, wipe line, the pixel under the mouse (not in a
+    // scripted screenshot, which compares with the headless render).
+    const ImageArea image_area{rect.x / f.fb_per_win, rect.y / f.fb_per_win, rect.w / f.fb_per_win,
+                         rect.h / f.fb_per_win};
+    draw_image_overlays(s, image_area, opt.screenshot_path.empty());
     // Switching to the noise view needs the sums of squares on the GPU.
     if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
     return rect;
@@ -200,7 +213,14 @@ struct Session {
     glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     s.display.exposure = report_exposure() * std::exp2(s.exposure_stops);
-    display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+    const bool held = s.held.spp > 0 && held_display.width() > 0;
+    if (held && s.compare == kCompareHeld) {
+      held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
+    } else {
+      display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+      if (held && s.compare == kCompareWipe)
+        held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
+    }
     glViewport(0, 0, f.fb_w, f.fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   }
@@ -299,9 +319,9 @@ int run_viewer(const ViewerOptions& opt) {
     std::fprintf(stderr, "whisker: %s\n", window.error().c_str());
     return 3;
   }
-  Display display;
+  Display display, held_display;
   std::string error;
-  if (!display.init(error)) {
+  if (!display.init(error) || !held_display.init(error)) {
     std::fprintf(stderr, "whisker: %s\n", error.c_str());
     return 1;
   }
@@ -321,7 +341,8 @@ int run_viewer(const ViewerOptions& opt) {
   renderer.start();
   s.last_change = glfwGetTime();
 
-  Session session{opt, window.handle(), display, renderer, s, kPanelWidth * imgui.ui_scale()};
+  Session session{opt, window.handle(), display, held_display, renderer, s,
+                  kPanelWidth * imgui.ui_scale()};
   const int exit_code = session.run();
   session.print_summary();
   renderer.stop();

@@ -22,7 +22,12 @@ struct PanelRequests {
   std::string load_scene;  // name or path
   int threads = 0;         // > 0: new thread count
   bool typing = false;     // a text field has the keyboard: hold the edits
+  bool hold = false;       // keep the current image for comparison
 };
+
+// The A/B comparison: an image held back, shown instead of or beside the
+// live one.
+enum CompareMode : int { kCompareOff = 0, kCompareHeld = 1, kCompareWipe = 2 };
 
 struct ViewerState {
   Scene initial;   // as loaded: what "reset camera" returns to
@@ -32,6 +37,7 @@ struct ViewerState {
   std::vector<std::string> scene_names;
   std::string path_field;
   std::string save_dir = ".";
+  std::string save_name;  // file name without extension; empty: SCENE-Nspp
   std::string message;  // last save / load result shown in the panel
   bool message_is_error = false;
 
@@ -42,6 +48,7 @@ struct ViewerState {
   double last_change = 0.0;      // glfwGetTime() of the last edit
 
   Snapshot snap;
+  ProgressiveRenderer::PassProgress progress;  // the pass in flight
   double rse = 0.0;  // relative standard error of snap
   std::size_t triangles = 0;
   std::size_t nodes = 0;  // 0: not known
@@ -50,6 +57,11 @@ struct ViewerState {
 
   float exposure_stops = 0.0f;  // relative to the report's mapping
   DisplayParams display;
+
+  Snapshot held;          // the image held for comparison (spp 0: none)
+  std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
+  int compare = kCompareOff;
+  float wipe = 0.5f;      // held image left of this fraction of the width
 
   // UI frame times (ms), for the panel and scripted-run summaries.
   std::vector<float> frame_ms;
