@@ -82,7 +82,7 @@ void pixel_readout(const ViewerState& s, const ImageArea& a) {
   ImGui::Text("pixel (%d, %d)%s", x, y, held ? "  [held image]" : "");
   ImGui::Text("radiance  %.4g  %.4g  %.4g", r.rgb[0], r.rgb[1], r.rgb[2]);
   if (r.std_error >= 0.0 && r.luminance > 0.0)
-    ImGui::Text("luminance %.4g +- %.3g (%.2f %%)", r.luminance, r.std_error,
+    ImGui::Text("luminance %.4g +- %.3g (%.3g %%)", r.luminance, r.std_error,
                 100.0 * r.std_error / r.luminance);
   else if (r.std_error >= 0.0)
     ImGui::Text("luminance %.4g +- %.3g", r.luminance, r.std_error);
