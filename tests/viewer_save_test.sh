@@ -27,9 +27,9 @@ wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1
 sleep 3
 # Ctrl+click turns the exposure slider (912x800 window, panel right) into a
 # text field.
-xdotool mousemove --window "$wid" 640 308; sleep 0.2
+xdotool mousemove --window "$wid" 640 331; sleep 0.2
 xdotool keydown ctrl; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; xdotool keyup ctrl; sleep 0.5
-xdotool key ctrl+a; xdotool type --delay 150 -- "-2"; sleep 0.3; press Return
+xdotool keydown ctrl; sleep 0.2; xdotool key a; sleep 0.3; xdotool keyup ctrl; xdotool type --delay 150 -- "-2"; sleep 0.3; press Return
 xdotool mousemove --window "$wid" 900 790; sleep 0.5
 press s
 press s

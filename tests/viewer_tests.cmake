@@ -26,9 +26,9 @@ set_tests_properties(ViewerInput.PanelClicksRestartNothingDragOrbits PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
 
 # Typing into the panel's fields through xdotool (skipped without it).
-add_test(NAME ViewerInput.TypingInFieldsFiresNoShortcutAndAppliesOnEnter
+add_test(NAME ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_typing_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.TypingInFieldsFiresNoShortcutAndAppliesOnEnter PROPERTIES
+set_tests_properties(ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
 
 # Save writes the image as shown (exposure set by typing) under a free name.

@@ -41,7 +41,9 @@ bool only_idle_fresnel(const Scene& applied, const Scene& edited) {
   return classify_change(same, edited) == SceneChange::None;
 }
 
-void Controller::apply_edits(double now) {
+void Controller::apply_edits(double now, bool record) {
+  if (record && classify_change(s.applied, s.edited) != SceneChange::None)
+    s.history.changed(s.applied);
   if (only_idle_fresnel(s.applied, s.edited)) {
     // Fresnel acts on glass only (it draws no random number elsewhere): the
     // image would be the same, so the render goes on. The next real edit
@@ -74,7 +76,52 @@ void Controller::restart(double now) {
   s.last_change = now;
 }
 
-void Controller::load(const std::string& name_or_path, double now) {
+void Controller::undo(double now) {
+  Scene scene = s.applied;
+  if (!s.history.undo(scene)) return;
+  s.edited = scene;
+  apply_edits(now, false);
+}
+
+void Controller::redo(double now) {
+  Scene scene = s.applied;
+  if (!s.history.redo(scene)) return;
+  s.edited = scene;
+  apply_edits(now, false);
+}
+
+void Controller::save_scene() {
+  namespace fs = std::filesystem;
+  try {
+    const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
+    fs::create_directories(dir);
+    const std::string wanted = s.save_name.empty() ? s.scene_label + "-edited" : s.save_name;
+    const std::string stem = free_stem(dir, wanted, {".json"});
+    const std::string path = (fs::path(dir) / (stem + ".json")).string();
+    write_file_atomically(path, [&](const std::string& tmp) {
+      FILE* f = std::fopen(tmp.c_str(), "w");
+      if (!f) return false;
+      const std::string text = scene_to_json(s.applied) + "\n";
+      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+      return std::fclose(f) == 0 && ok;
+    });
+    s.message = "saved the scene as " + path;
+    if (stem != wanted) s.message += " (" + wanted + ".json was taken)";
+    s.message_is_error = false;
+    std::printf("%s\n", s.message.c_str());
+    std::fflush(stdout);
+  } catch (const std::exception& e) {
+    s.message = std::string("save scene failed: ") + e.what();
+    s.message_is_error = true;
+  }
+}
+
+void Controller::load(const std::string& name_or_path, double now, bool confirmed) {
+  if (!confirmed && s.history.can_undo()) {
+    s.pending_load = name_or_path;  // the panel asks first
+    return;
+  }
+  s.pending_load.clear();
   try {
     const std::filesystem::path path = resolve_scene(name_or_path);
     Scene scene = load_scene(path);
@@ -85,6 +132,7 @@ void Controller::load(const std::string& name_or_path, double now) {
     s.path_field = path.string();
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
+    s.history.clear();
     s.message = "loaded " + path.string();
     s.message_is_error = false;
   } catch (const std::exception& e) {
@@ -149,9 +197,17 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.threads = renderer.threads();
   }
   if (!req.load_scene.empty()) load(req.load_scene, now);
+  if (req.confirm_load && !s.pending_load.empty()) load(s.pending_load, now, true);
+  if (req.bookmark) s.bookmarks.push_back(s.edited.camera);
+  if (req.goto_bookmark >= 0 && req.goto_bookmark < int(s.bookmarks.size()))
+    s.edited.camera = s.bookmarks[std::size_t(req.goto_bookmark)];
   // A number being typed applies when its field lets go of the keyboard
   // (Enter, Tab, a click elsewhere), not at every keystroke.
   if (!req.typing) apply_edits(now);
+  if (!req.editing) s.history.settle();
+  if (req.undo) undo(now);
+  if (req.redo) redo(now);
+  if (req.save_scene) save_scene();
   if (req.restart) restart(now);
   if (req.toggle_pause) {
     s.paused = !s.paused;

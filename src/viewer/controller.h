@@ -24,12 +24,21 @@ struct Controller {
   ProgressiveRenderer& renderer;
   ViewerState& s;
 
-  // Hands the panel's edits to the renderer if a value really changed.
-  void apply_edits(double now);
+  // Hands the panel's edits to the renderer if a value really changed;
+  // `record`: as an undo step.
+  void apply_edits(double now, bool record = true);
+  // One step back or forward in the edit history.
+  void undo(double now);
+  void redo(double now);
+  // Writes the applied scene as a scene file (scene_io's format) into
+  // s.save_dir, under a name that overwrites nothing.
+  void save_scene();
   // Renders the applied scene again from the first pass.
   void restart(double now);
   // Loads a bundled scene by name or a scene file; errors go to the panel.
-  void load(const std::string& name_or_path, double now);
+  // With edits that could be undone it first asks (s.pending_load) unless
+  // `confirmed`.
+  void load(const std::string& name_or_path, double now, bool confirmed = false);
   // Writes the image as shown (PNG) and its radiance (EXR, or PFM) into
   // s.save_dir, under a name that overwrites nothing.
   void save();

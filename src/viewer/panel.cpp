@@ -188,7 +188,20 @@ static void sampling_section(ViewerState& s, PanelRequests& req) {
   threads_slider(s, req);
 }
 
-static void camera_section(Camera& camera, PanelRequests& req) {
+static void bookmarks(const ViewerState& s, PanelRequests& req) {
+  if (ImGui::Button("Bookmark")) req.bookmark = true;
+  tip("Remember this camera; the numbered buttons go back to it.");
+  for (std::size_t k = 0; k < s.bookmarks.size() && k < 9; ++k) {
+    ImGui::SameLine();
+    ImGui::PushID(int(k));
+    if (ImGui::Button(std::to_string(k + 1).c_str())) req.goto_bookmark = int(k);
+    ImGui::PopID();
+    tip("Go to this bookmarked camera.");
+  }
+}
+
+static void camera_section(ViewerState& s, PanelRequests& req) {
+  Camera& camera = s.edited.camera;
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::DragFloat3("eye", &camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
   tip("Camera position (x, y, z). Or left-drag on the image to orbit.");
@@ -201,6 +214,7 @@ static void camera_section(Camera& camera, PanelRequests& req) {
   ImGui::SameLine();
   if (ImGui::Button("Print JSON (C)")) req.print_camera = true;
   tip("Print the camera as scene-file JSON to the terminal, to paste into a scene.");
+  bookmarks(s, req);
   ImGui::TextDisabled("left drag orbit, right/middle drag pan, wheel dolly");
 }
 
@@ -242,13 +256,14 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
   controls(s, req);
   display_section(s);
   compare_section(s, req);
-  save_section(s);
+  save_section(s, req);
   scene_section(s, req);
   light_section(s.edited.light);
   sampling_section(s, req);
-  camera_section(s.edited.camera, req);
+  camera_section(s, req);
   objects_section(s.edited);
 
+  confirm_load_popup(s, req);
   ImGui::PopItemWidth();
   ImGui::End();
 }

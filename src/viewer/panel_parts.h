@@ -14,8 +14,10 @@ void tip(const char* text);
 void status_section(const ViewerState& s, double now);
 // Pause, restart, save; the last message in a fixed two-line box.
 void controls(const ViewerState& s, PanelRequests& req);
-// Where Save writes, and under which name.
-void save_section(ViewerState& s);
+// Where Save writes, and under which name; Save scene.
+void save_section(ViewerState& s, PanelRequests& req);
+// Asks before a load throws away edits that could be undone.
+void confirm_load_popup(ViewerState& s, PanelRequests& req);
 // Hold the current image and compare it with the live one.
 void compare_section(ViewerState& s, PanelRequests& req);
 

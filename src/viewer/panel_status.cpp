@@ -178,6 +178,16 @@ void controls(const ViewerState& s, PanelRequests& req) {
   tip("Write the image as shown (exposure, tone curve, view) as PNG, and the radiance "
       "as a float image, into the folder under 'Save'. An existing file is never "
       "overwritten: a free name (-2, -3, ...) is taken and reported.");
+  ImGui::BeginDisabled(!s.history.can_undo());
+  if (ImGui::Button("Undo (Ctrl+Z)")) req.undo = true;
+  ImGui::EndDisabled();
+  tip("Take back the last edit (a whole drag or typed number is one step). "
+      "Display settings are not edits.");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!s.history.can_redo());
+  if (ImGui::Button("Redo (Ctrl+Y)")) req.redo = true;
+  ImGui::EndDisabled();
+  tip("Do again what Undo took back.");
   // Two lines, always there, wrapped: a message never moves what is below.
   const float h = ImGui::GetTextLineHeightWithSpacing() * 2.0f + 4.0f;
   ImGui::BeginChild("##message", ImVec2(0, h), false, ImGuiWindowFlags_NoScrollbar);
@@ -190,7 +200,7 @@ void controls(const ViewerState& s, PanelRequests& req) {
   if (!s.message.empty()) tip(s.message.c_str());
 }
 
-void save_section(ViewerState& s) {
+void save_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Save")) return;
   ImGui::InputText("folder", &s.save_dir);
   tip("Folder Save writes into (created if missing). '.' is the folder the viewer "
@@ -198,6 +208,10 @@ void save_section(ViewerState& s) {
   ImGui::InputTextWithHint("name", (s.scene_label + "-<spp>spp").c_str(), &s.save_name);
   tip("File name without extension. Empty: the scene's name and the samples per "
       "pixel. If the file exists, -2, -3, ... is added.");
+  if (ImGui::Button("Save scene")) req.save_scene = true;
+  tip("Write the scene with your edits (objects, light, camera, settings) as a scene "
+      "file (.json) into the folder: load it later with Scene > path, or "
+      "whisker --scene FILE. Named like the image, or SCENE-edited.");
 }
 
 void compare_section(ViewerState& s, PanelRequests& req) {
@@ -220,6 +234,29 @@ void compare_section(ViewerState& s, PanelRequests& req) {
   tip("Where the held image (left) ends and the live one (right) begins.");
   ImGui::EndDisabled();
   ImGui::EndDisabled();
+}
+
+}  // namespace whisker
+
+namespace whisker {
+
+void confirm_load_popup(ViewerState& s, PanelRequests& req) {
+  if (s.pending_load.empty()) return;
+  if (!ImGui::IsPopupOpen("Discard the edits?")) ImGui::OpenPopup("Discard the edits?");
+  if (!ImGui::BeginPopupModal("Discard the edits?", nullptr, ImGuiWindowFlags_AlwaysAutoResize))
+    return;
+  ImGui::Text("Loading %s replaces the current scene", s.pending_load.c_str());
+  ImGui::Text("and its edits (Save > Save scene keeps them).");
+  if (ImGui::Button("Discard and load")) {
+    req.confirm_load = true;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) {
+    s.pending_load.clear();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
 }
 
 }  // namespace whisker

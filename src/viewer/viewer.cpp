@@ -179,6 +179,7 @@ struct Session {
 
     map_keys(read_keys(), imgui_wants_keyboard(), req);
     req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
+    req.editing = ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown();
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
     mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);

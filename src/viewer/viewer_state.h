@@ -8,6 +8,7 @@
 #include "render/progressive.h"
 #include "scene/scene.h"
 #include "viewer/display.h"
+#include "viewer/history.h"
 
 namespace whisker {
 
@@ -23,6 +24,12 @@ struct PanelRequests {
   int threads = 0;         // > 0: new thread count
   bool typing = false;     // a text field has the keyboard: hold the edits
   bool hold = false;       // keep the current image for comparison
+  bool undo = false, redo = false;
+  bool save_scene = false;  // the applied scene as a scene file
+  bool bookmark = false;    // remember the camera
+  int goto_bookmark = -1;   // >= 0: take that bookmark's camera
+  bool editing = false;     // a widget or a mouse button is held: one undo step
+  bool confirm_load = false;  // discard the edits and load s.pending_load
 };
 
 // The A/B comparison: an image held back, shown instead of or beside the
@@ -57,6 +64,10 @@ struct ViewerState {
 
   float exposure_stops = 0.0f;  // relative to the report's mapping
   DisplayParams display;
+
+  EditHistory history;
+  std::vector<Camera> bookmarks;
+  std::string pending_load;  // a load waiting for "discard the edits?"
 
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
