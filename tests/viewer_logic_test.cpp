@@ -376,3 +376,25 @@ TEST(SaveScene, WritesALoadableSceneUnderAFreeName) {
   EXPECT_EQ(classify_change(s.applied, back), SceneChange::None);
   fs::remove_all(dir);
 }
+
+// With edits that could be undone, a load waits for "discard the edits?";
+// confirmed, it loads and clears the history.
+TEST(LoadScene, AsksBeforeDiscardingEdits) {
+  ProgressiveRenderer r(1);
+  ViewerState s;
+  s.initial = s.applied = s.edited = load_scene(resolve_scene("three-balls"));
+  Controller ctl{r, s};
+  ctl.load("diffuse-ball", 0.0);  // no edits yet: loads at once
+  EXPECT_EQ(s.scene_label, "diffuse-ball");
+  s.edited.light.intensity *= 2.0f;
+  ctl.apply_edits(0.0);
+  ctl.load("three-balls", 0.0);
+  EXPECT_EQ(s.scene_label, "diffuse-ball");  // not yet
+  EXPECT_EQ(s.pending_load, "three-balls");
+  PanelRequests req;
+  req.confirm_load = true;
+  ctl.carry_out(req, 0.0);
+  EXPECT_EQ(s.scene_label, "three-balls");
+  EXPECT_TRUE(s.pending_load.empty());
+  EXPECT_FALSE(s.history.can_undo());
+}

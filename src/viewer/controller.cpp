@@ -197,7 +197,10 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.threads = renderer.threads();
   }
   if (!req.load_scene.empty()) load(req.load_scene, now);
-  if (req.confirm_load && !s.pending_load.empty()) load(s.pending_load, now, true);
+  if (req.confirm_load && !s.pending_load.empty()) {
+    const std::string name = s.pending_load;  // load() clears pending_load
+    load(name, now, true);
+  }
   if (req.bookmark) s.bookmarks.push_back(s.edited.camera);
   if (req.goto_bookmark >= 0 && req.goto_bookmark < int(s.bookmarks.size()))
     s.edited.camera = s.bookmarks[std::size_t(req.goto_bookmark)];
