@@ -159,8 +159,12 @@ void Controller::save() {
     const std::string stem = free_stem(dir, wanted, {".png", float_ext});
     const std::string base = (fs::path(dir) / stem).string();
     // The PNG is what the window shows: exposure, tone curve, gamma, view.
-    const std::vector<unsigned char> rgb = map_like_display(sn, s.display);
-    if (!write_png_rgb8(base + ".png", sn.width, sn.height, rgb))
+    const bool debug = s.display.mode >= kViewNormals && s.debug.view == s.display.mode;
+    const std::vector<unsigned char> rgb =
+        debug ? map_like_display(s.debug.image, DisplayParams{1.0f, 1.0f, 0, 0})
+              : map_like_display(sn, s.display);
+    const Snapshot& shown = debug ? s.debug.image : sn;
+    if (!write_png_rgb8(base + ".png", shown.width, shown.height, rgb))
       throw std::runtime_error("cannot write " + base + ".png");
     const Image img = Image::mean_of(sn);
     write_float_image(base + float_ext, img);

@@ -46,6 +46,18 @@ void noise_legend(const ImageArea& a) {
   }
 }
 
+// The debug views' one-line legend.
+void debug_legend_box(const ViewerState& s, const ImageArea& a) {
+  const std::string text = debug_legend(s.debug);
+  if (text.empty()) return;
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  const ImVec2 p0(a.x + 8.0f, a.y + a.h - 8.0f - size.y);
+  dl->AddRectFilled(ImVec2(p0.x - 4, p0.y - 3), ImVec2(p0.x + size.x + 4, p0.y + size.y + 3),
+                    IM_COL32(0, 0, 0, 190), 3.0f);
+  dl->AddText(p0, IM_COL32(230, 230, 230, 255), text.c_str());
+}
+
 void wipe_line(const ViewerState& s, const ImageArea& a) {
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const float x = a.x + a.w * s.wipe;
@@ -96,7 +108,11 @@ void pixel_readout(const ViewerState& s, const ImageArea& a) {
 
 void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool readout) {
   if (area.w <= 0 || area.h <= 0) return;
-  if (s.display.mode == 1) noise_legend(area);
+  if (s.display.mode == kViewNoise) noise_legend(area);
+  if (s.display.mode >= kViewNormals) {
+    debug_legend_box(s, area);
+    return;  // the readout and the wipe are about the render
+  }
   if (s.compare == kCompareWipe && s.held.spp > 0) wipe_line(s, area);
   if (readout) pixel_readout(s, area);
 }

@@ -60,11 +60,14 @@ static void display_section(ViewerState& s) {
   tip("How bright values map to the screen. 'report': linear, anything above white "
       "clips (the report's mapping). 'ACES filmic': highlights roll off smoothly "
       "(Narkowicz 2015 fit), after the exposure.");
-  static const char* modes[] = {"image", "noise per pixel"};
-  ImGui::Combo("view", &s.display.mode, modes, 2);
+  static const char* modes[] = {"image", "noise per pixel", "normals", "material colours",
+                                "depth"};
+  ImGui::Combo("view", &s.display.mode, modes, kViewModes);
   tip("'noise per pixel': each pixel's relative standard error in false colour, "
       "blue 0.1 % to red 100 % (log scale); black where a pixel has no light. "
-      "The legend is at the image's bottom left.");
+      "'normals', 'material colours', 'depth': what the camera sees first through "
+      "each pixel, to check geometry and materials. The legend is at the image's "
+      "bottom left. Rendering goes on meanwhile.");
   if (ImGui::Button("Report mapping")) {
     s.exposure_stops = 0.0f;
     s.display.gamma = 2.2f;

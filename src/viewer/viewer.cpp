@@ -22,6 +22,7 @@
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/overlay.h"
+#include "viewer/scene_diff.h"
 #include "viewer/script.h"
 #include "viewer/viewer_state.h"
 #include "viewer/window.h"
@@ -115,6 +116,7 @@ struct Session {
   GLFWwindow* window;
   Display& display;
   Display& held_display;  // the A/B comparison's held image
+  Display& debug_display;  // normals, material colours, depth
   ProgressiveRenderer& renderer;
   ViewerState& s;
   float panel_w;  // window units
@@ -127,6 +129,7 @@ struct Session {
   std::uint64_t rse_generation = 0;
   std::uint64_t title_spp = ~0ull;
   std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
+  Scene debug_scene;                     // what s.debug shows
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -167,6 +170,7 @@ struct Session {
 
     PanelRequests req;
     s.progress = renderer.pass_progress();
+    update_debug_view();
     const float panel = std::min(panel_w, f.win_w);
     draw_panel(s, f.win_w, f.win_h, panel, t0, req);
 
@@ -200,6 +204,16 @@ struct Session {
     return rect;
   }
 
+  // A debug view follows the applied scene (camera moves included).
+  void update_debug_view() {
+    if (s.display.mode < kViewNormals) return;
+    if (s.debug.view == s.display.mode && classify_change(debug_scene, s.applied) == SceneChange::None)
+      return;
+    s.debug = render_debug_view(s.applied, s.display.mode);
+    debug_scene = s.applied;
+    debug_display.upload(s.debug.image, false);
+  }
+
   void update_title() {
     if (s.snap.spp == title_spp) return;
     title_spp = s.snap.spp;
@@ -215,7 +229,9 @@ struct Session {
     glClear(GL_COLOR_BUFFER_BIT);
     s.display.exposure = report_exposure() * std::exp2(s.exposure_stops);
     const bool held = s.held.spp > 0 && held_display.width() > 0;
-    if (held && s.compare == kCompareHeld) {
+    if (s.display.mode >= kViewNormals) {
+      debug_display.draw(rect, f.fb_h, 1.0f, DisplayParams{1.0f, 1.0f, 0, 0});
+    } else if (held && s.compare == kCompareHeld) {
       held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
     } else {
       display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
@@ -320,9 +336,9 @@ int run_viewer(const ViewerOptions& opt) {
     std::fprintf(stderr, "whisker: %s\n", window.error().c_str());
     return 3;
   }
-  Display display, held_display;
+  Display display, held_display, debug_display;
   std::string error;
-  if (!display.init(error) || !held_display.init(error)) {
+  if (!display.init(error) || !held_display.init(error) || !debug_display.init(error)) {
     std::fprintf(stderr, "whisker: %s\n", error.c_str());
     return 1;
   }
@@ -342,7 +358,7 @@ int run_viewer(const ViewerOptions& opt) {
   renderer.start();
   s.last_change = glfwGetTime();
 
-  Session session{opt, window.handle(), display, held_display, renderer, s,
+  Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
                   kPanelWidth * imgui.ui_scale()};
   const int exit_code = session.run();
   session.print_summary();

@@ -7,6 +7,7 @@
 
 #include "render/progressive.h"
 #include "scene/scene.h"
+#include "viewer/debug_views.h"
 #include "viewer/display.h"
 #include "viewer/history.h"
 
@@ -68,6 +69,8 @@ struct ViewerState {
   EditHistory history;
   std::vector<Camera> bookmarks;
   std::string pending_load;  // a load waiting for "discard the edits?"
+
+  DebugImage debug;       // the debug view on screen (display.mode >= 2)
 
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
