@@ -425,3 +425,40 @@ TEST(DebugViews, NormalsMaterialsAndDepthOfTheThreeBalls) {
   EXPECT_NEAR((1.0f - px(d, h / 2, w / 2, 0)) * d.far, 45.0f, 0.05f);
   EXPECT_NE(debug_legend(d).find("depth"), std::string::npos);
 }
+
+// During a long pass the tiles done climb before the pass publishes.
+TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 64;  // 2 x 2 tiles
+  s.camera.height = 64;
+  s.settings.spp = 300;
+  s.settings.target_spp = 300;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  bool seen_midway = false;
+  for (int k = 0; k < 2000 && !seen_midway; ++k) {
+    const auto p = r.pass_progress();
+    Snapshot snap;
+    const bool published = r.snapshot(snap) && snap.spp > 0;
+    seen_midway = p.rendering && p.generation == gen && p.pass_spp == 300 &&
+                  p.tiles_done > 0 && p.tiles_done < p.tiles_total && !published;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  r.stop();
+  EXPECT_TRUE(seen_midway);
+}
+
+TEST(SceneChange, FresnelWithoutGlassRestartsNothing) {
+  Scene diffuse = three_balls();
+  for (SphereObject& sp : diffuse.spheres) sp.material.kind = MaterialKind::Diffuse;
+  Scene b = diffuse;
+  b.settings.fresnel = !diffuse.settings.fresnel;
+  EXPECT_TRUE(only_idle_fresnel(diffuse, b));
+  b.settings.spp = 7;  // with another setting: a real change
+  EXPECT_FALSE(only_idle_fresnel(diffuse, b));
+  Scene glass = three_balls();  // has a hollow glass ball
+  Scene g = glass;
+  g.settings.fresnel = !glass.settings.fresnel;
+  EXPECT_FALSE(only_idle_fresnel(glass, g));
+}
