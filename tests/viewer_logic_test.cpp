@@ -5,12 +5,14 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 #include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "geometry/mesh.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
 #include "viewer/camera_control.h"
@@ -461,4 +463,41 @@ TEST(SceneChange, FresnelWithoutGlassRestartsNothing) {
   Scene g = glass;
   g.settings.fresnel = !glass.settings.fresnel;
   EXPECT_FALSE(only_idle_fresnel(glass, g));
+}
+
+// A dropped scene file loads; a dropped OBJ goes into the current scene in
+// place of its meshes; anything else is refused with a message naming it.
+TEST(DropFile, SceneFilesLoadObjsReplaceMeshesOthersAreRefused) {
+  PanelRequests req;
+  std::string error;
+  request_for_drop("/tmp/a/My Scene.JSON", req, error);
+  EXPECT_EQ(req.load_scene, "/tmp/a/My Scene.JSON");
+  EXPECT_TRUE(error.empty());
+  PanelRequests obj;
+  request_for_drop("/tmp/bunny.obj", obj, error);
+  EXPECT_EQ(obj.load_mesh, "/tmp/bunny.obj");
+  EXPECT_TRUE(obj.load_scene.empty());
+  PanelRequests png;
+  request_for_drop("/tmp/x.png", png, error);
+  EXPECT_TRUE(png.load_scene.empty() && png.load_mesh.empty());
+  EXPECT_NE(error.find("/tmp/x.png"), std::string::npos);
+
+  // The OBJ replaces the cat scene's mesh: the triangle count follows it.
+  namespace fs = std::filesystem;
+  const fs::path objp = fs::temp_directory_path() / ("whisker-drop-" + std::to_string(::getpid()) + ".obj");
+  {
+    std::ofstream out(objp);
+    out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  }
+  ProgressiveRenderer r(1);
+  ViewerState s;
+  s.scene_path = resolve_scene("cat").string();
+  Controller ctl{r, s};
+  PanelRequests drop;
+  drop.load_mesh = objp.string();
+  ctl.carry_out(drop, 0.0);
+  EXPECT_FALSE(s.message_is_error) << s.message;
+  ASSERT_EQ(s.applied.meshes.size(), 1u);
+  EXPECT_EQ(s.applied.meshes[0].mesh->triangles.size(), 2u);
+  fs::remove(objp);
 }

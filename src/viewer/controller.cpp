@@ -1,5 +1,6 @@
 #include "viewer/controller.h"
 
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -18,6 +19,17 @@ std::string scene_label_of(const Scene& scene, const std::string& path) {
   if (!scene.name.empty()) return scene.name;
   if (!path.empty()) return std::filesystem::path(path).stem().string();
   return "scene";
+}
+
+void request_for_drop(const std::string& path, PanelRequests& req, std::string& error) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".json")
+    req.load_scene = path;
+  else if (ext == ".obj")
+    req.load_mesh = path;
+  else
+    error = "dropped " + path + ": not a scene file (.json) or a mesh (.obj)";
 }
 
 bool only_target_raised(const Scene& applied, const Scene& edited) {
@@ -116,20 +128,26 @@ void Controller::save_scene() {
   }
 }
 
-void Controller::load(const std::string& name_or_path, double now, bool confirmed) {
+void Controller::load(const std::string& name_or_path, double now, bool confirmed,
+                      const std::string& mesh) {
   if (!confirmed && s.history.can_undo()) {
     s.pending_load = name_or_path;  // the panel asks first
+    s.pending_mesh = mesh;
     return;
   }
   s.pending_load.clear();
+  s.pending_mesh.clear();
   try {
     const std::filesystem::path path = resolve_scene(name_or_path);
-    Scene scene = load_scene(path);
+    Scene scene = load_scene(path, mesh);
+    if (!mesh.empty() && scene.meshes.empty())
+      throw std::runtime_error(path.string() + " has no mesh to replace with " + mesh);
     s.initial = scene;
     s.edited = scene;
     s.applied = scene;
     s.scene_label = scene_label_of(scene, path.string());
     s.path_field = path.string();
+    s.scene_path = path.string();
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
     s.history.clear();
@@ -201,9 +219,11 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.threads = renderer.threads();
   }
   if (!req.load_scene.empty()) load(req.load_scene, now);
+  // An OBJ goes into the current scene file in place of its meshes.
+  if (!req.load_mesh.empty()) load(s.scene_path.empty() ? "cat" : s.scene_path, now, false, req.load_mesh);
   if (req.confirm_load && !s.pending_load.empty()) {
-    const std::string name = s.pending_load;  // load() clears pending_load
-    load(name, now, true);
+    const std::string name = s.pending_load, mesh = s.pending_mesh;  // load() clears them
+    load(name, now, true, mesh);
   }
   if (req.bookmark) s.bookmarks.push_back(s.edited.camera);
   if (req.goto_bookmark >= 0 && req.goto_bookmark < int(s.bookmarks.size()))

@@ -12,6 +12,10 @@ namespace whisker {
 // The scene's name, else the file's stem, else "scene".
 std::string scene_label_of(const Scene& scene, const std::string& path);
 
+// What a file dropped on the window asks for: a scene file loads, an OBJ
+// replaces the current scene's meshes; anything else is refused with a message.
+void request_for_drop(const std::string& path, PanelRequests& req, std::string& error);
+
 // True if the edit only raises the target samples per pixel (or lifts it to
 // 0 = never stop): the render goes on instead of restarting.
 bool only_target_raised(const Scene& applied, const Scene& edited);
@@ -38,7 +42,8 @@ struct Controller {
   // Loads a bundled scene by name or a scene file; errors go to the panel.
   // With edits that could be undone it first asks (s.pending_load) unless
   // `confirmed`.
-  void load(const std::string& name_or_path, double now, bool confirmed = false);
+  void load(const std::string& name_or_path, double now, bool confirmed = false,
+            const std::string& mesh = {});
   // Writes the image as shown (PNG) and its radiance (EXR, or PFM) into
   // s.save_dir, under a name that overwrites nothing.
   void save();

@@ -184,6 +184,12 @@ struct Session {
     map_keys(read_keys(), imgui_wants_keyboard(), req);
     req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
     req.editing = ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown();
+    const std::string dropped = take_dropped_file();
+    if (!dropped.empty()) {
+      std::string error;
+      request_for_drop(dropped, req, error);
+      if (!error.empty()) s.message = error, s.message_is_error = true;
+    }
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
     mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);
@@ -306,6 +312,7 @@ void init_state(ViewerState& s, const ViewerOptions& opt) {
   s.initial = s.applied = s.edited = opt.scene;
   s.scene_label = scene_label_of(opt.scene, opt.scene_path);
   s.path_field = opt.scene_path;
+  s.scene_path = opt.scene_path;
   try {
     s.scene_names = list_scenes();
   } catch (const std::exception& e) {

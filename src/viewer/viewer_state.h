@@ -22,6 +22,7 @@ struct PanelRequests {
   bool print_camera = false;
   bool quit = false;
   std::string load_scene;  // name or path
+  std::string load_mesh;   // an OBJ for the current scene's meshes
   int threads = 0;         // > 0: new thread count
   bool typing = false;     // a text field has the keyboard: hold the edits
   bool hold = false;       // keep the current image for comparison
@@ -44,6 +45,7 @@ struct ViewerState {
   std::string scene_label;
   std::vector<std::string> scene_names;
   std::string path_field;
+  std::string scene_path;  // the file the current scene came from
   std::string save_dir = ".";
   std::string save_name;  // file name without extension; empty: SCENE-Nspp
   std::string message;  // last save / load result shown in the panel
@@ -69,6 +71,7 @@ struct ViewerState {
   EditHistory history;
   std::vector<Camera> bookmarks;
   std::string pending_load;  // a load waiting for "discard the edits?"
+  std::string pending_mesh;  // with this OBJ for its meshes
 
   DebugImage debug;       // the debug view on screen (display.mode >= 2)
 
