@@ -24,7 +24,9 @@ press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --windo
 pid=$!
 wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
 [ -n "$wid" ] || { echo "no viewer window" >>"$dir/E.err"; kill $pid; exit 0; }
-sleep 3
+# The title carries the samples per pixel: wait for both passes.
+for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 2 spp$" && break; sleep 0.5; done
+sleep 1
 # Ctrl+click turns the exposure slider (912x800 window, panel right) into a
 # text field.
 xdotool mousemove --window "$wid" 640 331; sleep 0.2

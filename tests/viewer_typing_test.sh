@@ -42,7 +42,9 @@ session() {  # name args actions...
 . "$dir/layout.sh"
 C() { click $PATH_X $PATH_Y; combo a; typed nosuch2; press Return; }
 D() { sleep 2; echo "alive after 2 passes" >"$dir/D.alive"; click $TARGET_X $TARGET_Y; combo a;
-      typed 15; sleep 2; press Return; sleep 5; }
+      typed 15; sleep 2; press Return
+      # The title carries the samples per pixel: wait (on a busy machine too) for 15.
+      for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 15 spp$" && break; sleep 0.5; done; }
 U() { xdotool mousemove --window "$wid" 256 400; sleep 0.2; xdotool mousedown 1; sleep 0.2
       for k in 1 2 3 4 5 6; do xdotool mousemove --window "$wid" $((256 + 10 * k)) 400; sleep 0.1; done
       xdotool mouseup 1; sleep 0.5; combo z; press c; combo y; press c; }
