@@ -12,6 +12,13 @@ uniform float exposure;      // linear scale; 1/255^2.2 is the report's mapping
 uniform float gamma;         // 2.2 in the report
 uniform int mode;            // 0 image, 1 relative standard error per pixel
 uniform vec3 lum_weights;    // as used for sums_sq
+uniform int tonemap;         // 0 the report's (clip at white), 1 ACES filmic
+
+// Narkowicz 2015, "ACES Filmic Tone Mapping Curve": a rational fit of the
+// ACES reference rendering transform, applied after the exposure.
+vec3 aces_narkowicz(vec3 x) {
+  return clamp(x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
 
 // Blue -> cyan -> green -> yellow -> red, t in [0, 1].
 vec3 heat(float t) {
@@ -35,6 +42,8 @@ void main() {
   // SCENES.md: 8-bit value = min(255, L^(1/2.2)) = 255 * min(1, (L / 255^2.2)^(1/2.2)),
   // truncated like the report's (and the PNG writer's) integer conversion;
   // GL would round, which shows as a half-level brightening against the PNG.
-  vec3 v = min(pow(max(mean * exposure, 0.0), vec3(1.0 / gamma)), 1.0);
+  vec3 x = max(mean * exposure, 0.0);
+  if (tonemap == 1) x = aces_narkowicz(x);
+  vec3 v = min(pow(x, vec3(1.0 / gamma)), 1.0);
   colour = vec4(floor(v * 255.0) / 255.0, 1.0);
 }

@@ -2,12 +2,23 @@
 // camera moves, and which keys and mouse states give which action.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <thread>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "geometry/mesh.h"
+#include "render/progressive.h"
+#include "scene/scene_io.h"
 #include "viewer/camera_control.h"
+#include "viewer/controller.h"
+#include "viewer/debug_views.h"
+#include "viewer/history.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/scene_diff.h"
@@ -225,4 +236,268 @@ TEST(InputMapping, RightDragPansAndWheelDollies) {
   wheel.wheel = 1.0f;
   MouseCamera().update(d, wheel, 1.0f);
   EXPECT_NEAR(d.position.z, 55.0f * 0.9f, 1e-4f);
+}
+
+TEST(TargetSpp, OnlyARaiseCarriesOn) {
+  Scene a = three_balls();
+  a.settings.target_spp = 16;
+  Scene b = a;
+  b.settings.target_spp = 48;
+  EXPECT_TRUE(only_target_raised(a, b));
+  b.settings.target_spp = 0;  // never stop
+  EXPECT_TRUE(only_target_raised(a, b));
+  b.settings.target_spp = 8;  // lowered: restart for exactly 8
+  EXPECT_FALSE(only_target_raised(a, b));
+  b.settings.target_spp = 48;
+  b.settings.fresnel = !a.settings.fresnel;  // with another edit: restart
+  EXPECT_FALSE(only_target_raised(a, b));
+  a.settings.target_spp = 0;  // from "never stop" to a number: restart
+  b = a;
+  b.settings.target_spp = 64;
+  EXPECT_FALSE(only_target_raised(a, b));
+}
+
+// Raising the target after it was reached renders more passes in the same
+// generation, and the result is the same image as a render to the higher
+// target from the start (samples are indexed, so nothing repeats).
+TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 40;
+  s.camera.height = 32;
+  s.settings.indirect = s.settings.aa = true;
+  s.settings.spp = 2;
+  s.settings.target_spp = 4;
+
+  ProgressiveRenderer r(2);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 4));
+  Snapshot first;
+  r.snapshot(first);
+  EXPECT_TRUE(first.done);
+  r.set_target_spp(10);
+  ASSERT_TRUE(r.wait_for(gen, 10));
+  Snapshot more;
+  r.snapshot(more);
+  r.stop();
+  EXPECT_EQ(more.generation, gen);
+  EXPECT_EQ(more.spp, 10u);
+  EXPECT_EQ(more.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
+  EXPECT_TRUE(more.done);
+
+  s.settings.target_spp = 10;
+  ProgressiveRenderer fresh(2);
+  const std::uint64_t g2 = fresh.set_scene(s);
+  fresh.start();
+  ASSERT_TRUE(fresh.wait_for(g2, 10));
+  Snapshot ref;
+  fresh.snapshot(ref);
+  fresh.stop();
+  EXPECT_EQ(more.sum, ref.sum);
+  EXPECT_EQ(more.sum_sq, ref.sum_sq);
+}
+
+// A pass reports its tiles as they finish; between passes nothing runs.
+TEST(TargetSpp, PassProgressCountsTiles) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 70;  // 3 x 2 tiles of 32
+  s.camera.height = 40;
+  s.settings.spp = 1;
+  s.settings.target_spp = 2;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 2));
+  // Done: the workers wait, so the progress is "not rendering".
+  for (int k = 0; k < 100 && r.pass_progress().rendering; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto p = r.pass_progress();
+  r.stop();
+  EXPECT_FALSE(p.rendering);
+  EXPECT_EQ(p.generation, gen);
+  EXPECT_EQ(p.tiles_total, 6);
+  EXPECT_EQ(p.tiles_done, 6);
+}
+
+TEST(EditHistory, ADragIsOneStepAndUndoRedoWalkIt) {
+  EditHistory h;
+  Scene a = three_balls(), b = a, c = a;
+  b.light.position.x = 5.0f;
+  c.light.position.x = 9.0f;
+  h.changed(a);  // a drag: a -> b -> c, one gesture
+  h.changed(b);
+  h.settle();
+  EXPECT_EQ(h.steps(), 1u);
+  Scene cur = c;
+  ASSERT_TRUE(h.undo(cur));
+  EXPECT_EQ(cur.light.position.x, a.light.position.x);  // back before the drag
+  EXPECT_FALSE(h.can_undo());
+  ASSERT_TRUE(h.redo(cur));
+  EXPECT_EQ(cur.light.position.x, 9.0f);
+  EXPECT_FALSE(h.redo(cur));
+  // A new edit after an undo drops the redo branch.
+  ASSERT_TRUE(h.undo(cur));
+  h.changed(cur);
+  EXPECT_FALSE(h.can_redo());
+}
+
+TEST(InputMapping, CtrlZAndCtrlYUndoAndRedoButNotWhileTyping) {
+  KeyPresses k;
+  k.undo = true;
+  PanelRequests req;
+  map_keys(k, false, req);
+  EXPECT_TRUE(req.undo);
+  EXPECT_FALSE(req.redo);
+  k.undo = false;
+  k.redo = true;
+  PanelRequests typing;
+  map_keys(k, true, typing);  // a text field has its own undo
+  EXPECT_FALSE(typing.redo);
+}
+
+// Save scene writes a file that loads back as the same scene, and never
+// overwrites the previous one.
+TEST(SaveScene, WritesALoadableSceneUnderAFreeName) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("whisker-save-scene-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  ProgressiveRenderer r(1);
+  ViewerState s;
+  s.initial = s.applied = s.edited = load_scene(resolve_scene("three-balls"));
+  s.scene_label = "three-balls";
+  s.save_dir = dir.string();
+  Controller ctl{r, s};
+  s.edited.light.position = vec3(1.0f, 2.0f, 3.0f);
+  s.edited.settings.fresnel = true;
+  ctl.apply_edits(0.0);
+  ctl.save_scene();
+  ctl.save_scene();
+  EXPECT_FALSE(s.message_is_error) << s.message;
+  ASSERT_TRUE(fs::exists(dir / "three-balls-edited.json"));
+  ASSERT_TRUE(fs::exists(dir / "three-balls-edited-2.json"));
+  const Scene back = load_scene(dir / "three-balls-edited.json");
+  EXPECT_EQ(classify_change(s.applied, back), SceneChange::None);
+  fs::remove_all(dir);
+}
+
+// With edits that could be undone, a load waits for "discard the edits?";
+// confirmed, it loads and clears the history.
+TEST(LoadScene, AsksBeforeDiscardingEdits) {
+  ProgressiveRenderer r(1);
+  ViewerState s;
+  s.initial = s.applied = s.edited = load_scene(resolve_scene("three-balls"));
+  Controller ctl{r, s};
+  ctl.load("diffuse-ball", 0.0);  // no edits yet: loads at once
+  EXPECT_EQ(s.scene_label, "diffuse-ball");
+  s.edited.light.intensity *= 2.0f;
+  ctl.apply_edits(0.0);
+  ctl.load("three-balls", 0.0);
+  EXPECT_EQ(s.scene_label, "diffuse-ball");  // not yet
+  EXPECT_EQ(s.pending_load, "three-balls");
+  PanelRequests req;
+  req.confirm_load = true;
+  ctl.carry_out(req, 0.0);
+  EXPECT_EQ(s.scene_label, "three-balls");
+  EXPECT_TRUE(s.pending_load.empty());
+  EXPECT_FALSE(s.history.can_undo());
+}
+
+// Debug views of the three balls: the centre ray meets the glass ball
+// (centre 0, radius 10) head on, 45 units from the eye at z = 55; the
+// bottom row sees the blue floor.
+TEST(DebugViews, NormalsMaterialsAndDepthOfTheThreeBalls) {
+  const Scene s = load_scene(resolve_scene("three-balls"));
+  const int w = s.camera.width, h = s.camera.height;
+  const auto px = [&](const DebugImage& d, int i, int j, int c) {
+    return d.image.sum[(std::size_t(i) * w + j) * 3 + c];
+  };
+  const DebugImage n = render_debug_view(s, kViewNormals);
+  EXPECT_NEAR(px(n, h / 2, w / 2, 0), 0.5f, 0.01f);
+  EXPECT_NEAR(px(n, h / 2, w / 2, 1), 0.5f, 0.01f);
+  EXPECT_NEAR(px(n, h / 2, w / 2, 2), 1.0f, 0.01f);  // facing the camera: +z
+  EXPECT_NEAR(px(n, h - 1, w / 2, 1), 1.0f, 0.01f);  // the floor faces up: +y
+
+  const DebugImage m = render_debug_view(s, kViewAlbedo);
+  EXPECT_FLOAT_EQ(px(m, h / 2, w / 2, 0), kGlassColour.x);
+  EXPECT_EQ(px(m, h - 1, w / 2, 0), 0.0f);  // floor albedo (0, 0, 1)
+  EXPECT_EQ(px(m, h - 1, w / 2, 2), 1.0f);
+
+  const DebugImage d = render_debug_view(s, kViewDepth);
+  ASSERT_GT(d.far, 45.0f);
+  EXPECT_NEAR((1.0f - px(d, h / 2, w / 2, 0)) * d.far, 45.0f, 0.05f);
+  EXPECT_NE(debug_legend(d).find("depth"), std::string::npos);
+}
+
+// During a long pass the tiles done climb before the pass publishes.
+TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 64;  // 2 x 2 tiles
+  s.camera.height = 64;
+  s.settings.spp = 300;
+  s.settings.target_spp = 300;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  bool seen_midway = false;
+  for (int k = 0; k < 2000 && !seen_midway; ++k) {
+    const auto p = r.pass_progress();
+    Snapshot snap;
+    const bool published = r.snapshot(snap) && snap.spp > 0;
+    seen_midway = p.rendering && p.generation == gen && p.pass_spp == 300 &&
+                  p.tiles_done > 0 && p.tiles_done < p.tiles_total && !published;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  r.stop();
+  EXPECT_TRUE(seen_midway);
+}
+
+TEST(SceneChange, FresnelWithoutGlassRestartsNothing) {
+  Scene diffuse = three_balls();
+  for (SphereObject& sp : diffuse.spheres) sp.material.kind = MaterialKind::Diffuse;
+  Scene b = diffuse;
+  b.settings.fresnel = !diffuse.settings.fresnel;
+  EXPECT_TRUE(only_idle_fresnel(diffuse, b));
+  b.settings.spp = 7;  // with another setting: a real change
+  EXPECT_FALSE(only_idle_fresnel(diffuse, b));
+  Scene glass = three_balls();  // has a hollow glass ball
+  Scene g = glass;
+  g.settings.fresnel = !glass.settings.fresnel;
+  EXPECT_FALSE(only_idle_fresnel(glass, g));
+}
+
+// A dropped scene file loads; a dropped OBJ goes into the current scene in
+// place of its meshes; anything else is refused with a message naming it.
+TEST(DropFile, SceneFilesLoadObjsReplaceMeshesOthersAreRefused) {
+  PanelRequests req;
+  std::string error;
+  request_for_drop("/tmp/a/My Scene.JSON", req, error);
+  EXPECT_EQ(req.load_scene, "/tmp/a/My Scene.JSON");
+  EXPECT_TRUE(error.empty());
+  PanelRequests obj;
+  request_for_drop("/tmp/bunny.obj", obj, error);
+  EXPECT_EQ(obj.load_mesh, "/tmp/bunny.obj");
+  EXPECT_TRUE(obj.load_scene.empty());
+  PanelRequests png;
+  request_for_drop("/tmp/x.png", png, error);
+  EXPECT_TRUE(png.load_scene.empty() && png.load_mesh.empty());
+  EXPECT_NE(error.find("/tmp/x.png"), std::string::npos);
+
+  // The OBJ replaces the cat scene's mesh: the triangle count follows it.
+  namespace fs = std::filesystem;
+  const fs::path objp = fs::temp_directory_path() / ("whisker-drop-" + std::to_string(::getpid()) + ".obj");
+  {
+    std::ofstream out(objp);
+    out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
+  }
+  ProgressiveRenderer r(1);
+  ViewerState s;
+  s.scene_path = resolve_scene("cat").string();
+  Controller ctl{r, s};
+  PanelRequests drop;
+  drop.load_mesh = objp.string();
+  ctl.carry_out(drop, 0.0);
+  EXPECT_FALSE(s.message_is_error) << s.message;
+  ASSERT_EQ(s.applied.meshes.size(), 1u);
+  EXPECT_EQ(s.applied.meshes[0].mesh->triangles.size(), 2u);
+  fs::remove(objp);
 }

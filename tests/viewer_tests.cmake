@@ -1,7 +1,8 @@
 # Viewer tests (included from tests/CMakeLists.txt when WHISKER_VIEWER is ON).
 
 # Camera moves and edit classification: plain functions, no window.
-add_executable(viewer_logic_tests ${CMAKE_CURRENT_SOURCE_DIR}/viewer_logic_test.cpp)
+add_executable(viewer_logic_tests ${CMAKE_CURRENT_SOURCE_DIR}/viewer_logic_test.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/viewer_readout_test.cpp)
 target_link_libraries(viewer_logic_tests PRIVATE whisker_viewer GTest::gtest_main)
 gtest_discover_tests(viewer_logic_tests DISCOVERY_TIMEOUT 60)
 
@@ -22,4 +23,16 @@ gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
 add_test(NAME ViewerInput.PanelClicksRestartNothingDragOrbits
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_input_test.sh $<TARGET_FILE:whisker>)
 set_tests_properties(ViewerInput.PanelClicksRestartNothingDragOrbits PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# Typing into the panel's fields through xdotool (skipped without it).
+add_test(NAME ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_typing_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# Save writes the image as shown (exposure set by typing) under a free name.
+add_test(NAME ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_save_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)

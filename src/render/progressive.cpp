@@ -71,6 +71,34 @@ std::uint64_t ProgressiveRenderer::set_settings(const RenderSettings& settings) 
   return pending_generation_;
 }
 
+void ProgressiveRenderer::set_target_spp(int target_spp) {
+  const int target = std::max(0, target_spp);
+  std::uint64_t gen = 0;
+  {
+    std::lock_guard lock(pending_mutex_);
+    pending_scene_.settings.target_spp = target;
+    gen = pending_generation_;
+    pending_cv_.notify_all();
+  }
+  // The published image is no longer "done" if the target went up.
+  std::lock_guard lock(publish_mutex_);
+  if (published_.generation == gen && !published_.preview)
+    published_.done = target > 0 && published_.spp >= std::uint64_t(target);
+}
+
+ProgressiveRenderer::PassProgress ProgressiveRenderer::pass_progress() const {
+  PassProgress p;
+  p.generation = progress_generation_.load();
+  p.tiles_done = progress_tiles_done_.load();
+  p.tiles_total = progress_tiles_total_.load();
+  p.pass_spp = progress_spp_.load();
+  p.rendering = progress_running_.load();
+  const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               Clock::now().time_since_epoch()).count();
+  p.pass_seconds = p.rendering ? double(now - progress_start_ns_.load()) * 1e-9 : 0.0;
+  return p;
+}
+
 Scene ProgressiveRenderer::current_scene() const {
   std::lock_guard lock(pending_mutex_);
   return pending_scene_;
@@ -162,9 +190,12 @@ void ProgressiveRenderer::worker_main(int index) {
 bool ProgressiveRenderer::begin_pass() {
   Job& job = *job_;
   std::unique_lock lock(pending_mutex_);
+  progress_running_ = false;
   for (;;) {
     if (quit_) return false;
     const bool fresh = pending_generation_ != job.generation;
+    // A raised target (set_target_spp) carries on with the same generation.
+    if (!fresh) job.scene.settings.target_spp = pending_scene_.settings.target_spp;
     const int target = fresh ? pending_scene_.settings.target_spp : job.scene.settings.target_spp;
     const bool done = !fresh && target > 0 && job.spp_done >= std::uint64_t(target);
     if (!paused_ && pending_generation_ != 0 && (fresh || !done)) break;
@@ -201,6 +232,13 @@ bool ProgressiveRenderer::begin_pass() {
   job.pass_rays = 0;
   job.aborted = false;
   job.pass_start = Clock::now();
+  progress_generation_ = job.generation;
+  progress_tiles_done_ = 0;
+  progress_tiles_total_ = job.tiles_x * job.tiles_y;
+  progress_spp_ = job.preview_pass ? 0 : spp;
+  progress_start_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                           job.pass_start.time_since_epoch()).count();
+  progress_running_ = true;
   return true;
 }
 
@@ -249,6 +287,7 @@ void ProgressiveRenderer::run_tiles() {
     }
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
     job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
+    progress_tiles_done_.fetch_add(1, std::memory_order_relaxed);
   }
 }
 

@@ -33,6 +33,22 @@ class ProgressiveRenderer {
   // Same, for settings-only edits. (A scene whose meshes are the same
   // objects, and the same accel kind, reuses the BVH either way.)
   std::uint64_t set_settings(const RenderSettings& settings);
+  // Changes only the target samples per pixel of the current generation: the
+  // accumulation goes on from where it is (a finished render resumes). Meant
+  // for raising the target; a target below the samples already taken just
+  // stops. Thread-safe.
+  void set_target_spp(int target_spp);
+
+  // How far the pass in flight is: tiles finished out of all, for a progress
+  // display (a long pass shows no new image for a while).
+  struct PassProgress {
+    std::uint64_t generation = 0;
+    int tiles_done = 0, tiles_total = 0;
+    int pass_spp = 0;            // samples per pixel this pass adds
+    double pass_seconds = 0.0;   // time since the pass began
+    bool rendering = false;      // false between passes (paused, done)
+  };
+  PassProgress pass_progress() const;
 
   void start();                 // launch the workers
   void stop();                  // join them (a running pass is abandoned)
@@ -85,6 +101,11 @@ class ProgressiveRenderer {
   mutable std::mutex publish_mutex_;
   std::condition_variable publish_cv_;
   Snapshot published_;
+  // The pass in flight, for pass_progress(); written by the workers.
+  std::atomic<std::uint64_t> progress_generation_{0};
+  std::atomic<int> progress_tiles_done_{0}, progress_tiles_total_{0}, progress_spp_{0};
+  std::atomic<std::int64_t> progress_start_ns_{0};
+  std::atomic<bool> progress_running_{false};
 };
 
 }  // namespace whisker

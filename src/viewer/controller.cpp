@@ -1,12 +1,17 @@
 #include "viewer/controller.h"
 
+#include <cctype>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <stdexcept>
+#include <vector>
 
 #include "render/film.h"
 #include "render/image_io.h"
 #include "scene/scene_io.h"
+#include "viewer/display.h"
+#include "viewer/readout.h"
 #include "viewer/scene_diff.h"
 
 namespace whisker {
@@ -17,7 +22,54 @@ std::string scene_label_of(const Scene& scene, const std::string& path) {
   return "scene";
 }
 
-void Controller::apply_edits(double now) {
+void request_for_drop(const std::string& path, PanelRequests& req, std::string& error) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".json")
+    req.load_scene = path;
+  else if (ext == ".obj")
+    req.load_mesh = path;
+  else
+    error = "dropped " + path + ": not a scene file (.json) or a mesh (.obj)";
+}
+
+bool only_target_raised(const Scene& applied, const Scene& edited) {
+  const int before = applied.settings.target_spp, after = edited.settings.target_spp;
+  if (before == after || before <= 0 || (after > 0 && after < before)) return false;
+  Scene same = applied;
+  same.settings.target_spp = after;
+  return classify_change(same, edited) == SceneChange::None;
+}
+
+bool only_idle_fresnel(const Scene& applied, const Scene& edited) {
+  if (applied.settings.fresnel == edited.settings.fresnel) return false;
+  for (const SphereObject& sp : edited.spheres)
+    if (sp.material.kind == MaterialKind::Glass || sp.material.kind == MaterialKind::HollowGlass)
+      return false;
+  for (const MeshObject& m : edited.meshes)
+    if (m.material.kind == MaterialKind::Glass || m.material.kind == MaterialKind::HollowGlass)
+      return false;
+  Scene same = applied;
+  same.settings.fresnel = edited.settings.fresnel;
+  return classify_change(same, edited) == SceneChange::None;
+}
+
+void Controller::apply_edits(double now, bool record) {
+  if (record && classify_change(s.applied, s.edited) != SceneChange::None)
+    s.history.changed(s.applied);
+  if (only_idle_fresnel(s.applied, s.edited)) {
+    // Fresnel acts on glass only (it draws no random number elsewhere): the
+    // image would be the same, so the render goes on. The next real edit
+    // hands the renderer all settings.
+    s.applied = s.edited;
+    return;
+  }
+  if (only_target_raised(s.applied, s.edited)) {
+    // More samples of the same image: the accumulation carries on.
+    renderer.set_target_spp(s.edited.settings.target_spp);
+    s.applied = s.edited;
+    return;
+  }
   switch (classify_change(s.applied, s.edited)) {
     case SceneChange::None:
       return;
@@ -37,17 +89,69 @@ void Controller::restart(double now) {
   s.last_change = now;
 }
 
-void Controller::load(const std::string& name_or_path, double now) {
+void Controller::undo(double now) {
+  Scene scene = s.applied;
+  if (!s.history.undo(scene)) return;
+  s.edited = scene;
+  apply_edits(now, false);
+}
+
+void Controller::redo(double now) {
+  Scene scene = s.applied;
+  if (!s.history.redo(scene)) return;
+  s.edited = scene;
+  apply_edits(now, false);
+}
+
+void Controller::save_scene() {
+  namespace fs = std::filesystem;
+  try {
+    const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
+    fs::create_directories(dir);
+    const std::string wanted = s.save_name.empty() ? s.scene_label + "-edited" : s.save_name;
+    const std::string stem = free_stem(dir, wanted, {".json"});
+    const std::string path = (fs::path(dir) / (stem + ".json")).string();
+    write_file_atomically(path, [&](const std::string& tmp) {
+      FILE* f = std::fopen(tmp.c_str(), "w");
+      if (!f) return false;
+      const std::string text = scene_to_json(s.applied) + "\n";
+      const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+      return std::fclose(f) == 0 && ok;
+    });
+    s.message = "saved the scene as " + path;
+    if (stem != wanted) s.message += " (" + wanted + ".json was taken)";
+    s.message_is_error = false;
+    std::printf("%s\n", s.message.c_str());
+    std::fflush(stdout);
+  } catch (const std::exception& e) {
+    s.message = std::string("save scene failed: ") + e.what();
+    s.message_is_error = true;
+  }
+}
+
+void Controller::load(const std::string& name_or_path, double now, bool confirmed,
+                      const std::string& mesh) {
+  if (!confirmed && s.history.can_undo()) {
+    s.pending_load = name_or_path;  // the panel asks first
+    s.pending_mesh = mesh;
+    return;
+  }
+  s.pending_load.clear();
+  s.pending_mesh.clear();
   try {
     const std::filesystem::path path = resolve_scene(name_or_path);
-    Scene scene = load_scene(path);
+    Scene scene = load_scene(path, mesh);
+    if (!mesh.empty() && scene.meshes.empty())
+      throw std::runtime_error(path.string() + " has no mesh to replace with " + mesh);
     s.initial = scene;
     s.edited = scene;
     s.applied = scene;
     s.scene_label = scene_label_of(scene, path.string());
     s.path_field = path.string();
+    s.scene_path = path.string();
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
+    s.history.clear();
     s.message = "loaded " + path.string();
     s.message_is_error = false;
   } catch (const std::exception& e) {
@@ -63,15 +167,27 @@ void Controller::save() {
     s.message_is_error = true;
     return;
   }
-  const std::string base = (std::filesystem::path(s.save_dir) /
-                            (s.scene_label + "-" + std::to_string(sn.spp) + "spp"))
-                               .string();
+  namespace fs = std::filesystem;
   try {
+    const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
+    fs::create_directories(dir);
+    const std::string wanted =
+        s.save_name.empty() ? s.scene_label + "-" + std::to_string(sn.spp) + "spp" : s.save_name;
+    const std::string float_ext = have_exr() ? ".exr" : ".pfm";
+    // Never overwrite: the first free name, and the panel says which.
+    const std::string stem = free_stem(dir, wanted, {".png", float_ext});
+    const std::string base = (fs::path(dir) / stem).string();
+    // The PNG is what the window shows: exposure, tone curve, gamma, view.
+    const bool debug = s.display.mode >= kViewNormals && s.debug.view == s.display.mode;
+    const std::vector<unsigned char> rgb =
+        debug ? map_like_display(s.debug.image, DisplayParams{1.0f, 1.0f, 0, 0})
+              : map_like_display(sn, s.display);
+    const Snapshot& shown = debug ? s.debug.image : sn;
+    write_png_rgb8(base + ".png", shown.width, shown.height, rgb);
     const Image img = mean_image(sn);
-    write_png(base + ".png", img);
-    const std::string float_path = base + (have_exr() ? ".exr" : ".pfm");
-    write_float_image(float_path, img);
-    s.message = "saved " + base + ".png and " + float_path;
+    write_float_image(base + float_ext, img);
+    s.message = "saved " + base + ".png (as shown) and " + base + float_ext + " (radiance)";
+    if (stem != wanted) s.message += "; " + wanted + " was taken, so the name is " + stem;
     s.message_is_error = false;
     std::printf("%s\n", s.message.c_str());
     std::fflush(stdout);
@@ -81,6 +197,21 @@ void Controller::save() {
   }
 }
 
+void Controller::hold() {
+  if (s.snap.spp == 0 || s.snap.preview) {
+    s.message = "nothing to hold yet";
+    s.message_is_error = true;
+    return;
+  }
+  s.held = s.snap;
+  const RenderSettings& r = s.applied.settings;
+  s.held_note = std::to_string(s.snap.spp) + " spp, Fresnel " + (r.fresnel ? "on" : "off") +
+                ", indirect " + (r.indirect ? "on" : "off");
+  if (s.compare == kCompareOff) s.compare = kCompareWipe;
+  s.message = "holding the image (" + s.held_note + ") for comparison";
+  s.message_is_error = false;
+}
+
 void Controller::carry_out(const PanelRequests& req, double now) {
   if (req.reset_camera) s.edited.camera = s.initial.camera;
   if (req.threads > 0) {
@@ -88,13 +219,29 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.threads = renderer.threads();
   }
   if (!req.load_scene.empty()) load(req.load_scene, now);
-  apply_edits(now);
+  // An OBJ goes into the current scene file in place of its meshes.
+  if (!req.load_mesh.empty()) load(s.scene_path.empty() ? "cat" : s.scene_path, now, false, req.load_mesh);
+  if (req.confirm_load && !s.pending_load.empty()) {
+    const std::string name = s.pending_load, mesh = s.pending_mesh;  // load() clears them
+    load(name, now, true, mesh);
+  }
+  if (req.bookmark) s.bookmarks.push_back(s.edited.camera);
+  if (req.goto_bookmark >= 0 && req.goto_bookmark < int(s.bookmarks.size()))
+    s.edited.camera = s.bookmarks[std::size_t(req.goto_bookmark)];
+  // A number being typed applies when its field lets go of the keyboard
+  // (Enter, Tab, a click elsewhere), not at every keystroke.
+  if (!req.typing) apply_edits(now);
+  if (!req.editing) s.history.settle();
+  if (req.undo) undo(now);
+  if (req.redo) redo(now);
+  if (req.save_scene) save_scene();
   if (req.restart) restart(now);
   if (req.toggle_pause) {
     s.paused = !s.paused;
     renderer.set_paused(s.paused);
   }
   if (req.save) save();
+  if (req.hold) hold();
   if (req.print_camera) {
     std::printf("%s\n", camera_to_json(s.applied.camera).c_str());
     std::fflush(stdout);

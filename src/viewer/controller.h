@@ -12,18 +12,43 @@ namespace whisker {
 // The scene's name, else the file's stem, else "scene".
 std::string scene_label_of(const Scene& scene, const std::string& path);
 
+// What a file dropped on the window asks for: a scene file loads, an OBJ
+// replaces the current scene's meshes; anything else is refused with a message.
+void request_for_drop(const std::string& path, PanelRequests& req, std::string& error);
+
+// True if the edit only raises the target samples per pixel (or lifts it to
+// 0 = never stop): the render goes on instead of restarting.
+bool only_target_raised(const Scene& applied, const Scene& edited);
+
+// True if the edit only switches Fresnel in a scene without glass: the image
+// cannot change, so nothing restarts.
+bool only_idle_fresnel(const Scene& applied, const Scene& edited);
+
 struct Controller {
   ProgressiveRenderer& renderer;
   ViewerState& s;
 
-  // Hands the panel's edits to the renderer if a value really changed.
-  void apply_edits(double now);
+  // Hands the panel's edits to the renderer if a value really changed;
+  // `record`: as an undo step.
+  void apply_edits(double now, bool record = true);
+  // One step back or forward in the edit history.
+  void undo(double now);
+  void redo(double now);
+  // Writes the applied scene as a scene file (scene_io's format) into
+  // s.save_dir, under a name that overwrites nothing.
+  void save_scene();
   // Renders the applied scene again from the first pass.
   void restart(double now);
   // Loads a bundled scene by name or a scene file; errors go to the panel.
-  void load(const std::string& name_or_path, double now);
-  // Writes the current mean as PNG and EXR (or PFM) into s.save_dir.
+  // With edits that could be undone it first asks (s.pending_load) unless
+  // `confirmed`.
+  void load(const std::string& name_or_path, double now, bool confirmed = false,
+            const std::string& mesh = {});
+  // Writes the image as shown (PNG) and its radiance (EXR, or PFM) into
+  // s.save_dir, under a name that overwrites nothing.
   void save();
+  // Keeps the current image for the A/B comparison.
+  void hold();
   // Carries out the panel's and the keys' requests, except quitting.
   void carry_out(const PanelRequests& req, double now);
 };

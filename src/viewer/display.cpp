@@ -100,6 +100,7 @@ bool Display::init(std::string& error) {
   loc_lum_ = glGetUniformLocation(program_, "lum_weights");
   loc_sums_ = glGetUniformLocation(program_, "sums");
   loc_sq_ = glGetUniformLocation(program_, "sums_sq");
+  loc_tonemap_ = glGetUniformLocation(program_, "tonemap");
 
   glGenVertexArrays(1, &vao_);  // core profile: a bound VAO even with no attributes
   for (GLuint* t : {&tex_, &tex_sq_}) {
@@ -154,16 +155,28 @@ void Display::upload(const Snapshot& s, bool with_sq) {
 
 void Display::draw(const PixelRect& area, int framebuffer_height, float spp,
                    const DisplayParams& p) {
+  draw_columns(area, framebuffer_height, spp, p, 0.0f, 1.0f);
+}
+
+void Display::draw_columns(const PixelRect& area, int framebuffer_height, float spp,
+                           const DisplayParams& p, float from, float to) {
   if (!width_ || !height_ || area.w <= 0 || area.h <= 0) return;
   if (!cache_valid_ || spp != cache_spp_ || p.exposure != cache_params_.exposure ||
-      p.gamma != cache_params_.gamma || p.mode != cache_params_.mode)
+      p.gamma != cache_params_.gamma || p.mode != cache_params_.mode ||
+      p.tonemap != cache_params_.tonemap)
     map_to_cache(spp, p);
+  // Whole image pixels on both sides, so a wipe never stretches a column.
+  const int c0 = int(std::lround(std::clamp(from, 0.0f, 1.0f) * cache_w_));
+  const int c1 = int(std::lround(std::clamp(to, 0.0f, 1.0f) * cache_w_));
+  if (c1 <= c0) return;
+  const int x0 = area.x + int(std::lround(double(c0) * area.w / cache_w_));
+  const int x1 = area.x + int(std::lround(double(c1) * area.w / cache_w_));
   // Magnified or 1:1 pixels stay crisp; a reduced image is filtered.
   const int y0 = framebuffer_height - area.y - area.h;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glDisable(GL_SCISSOR_TEST);
-  glBlitFramebuffer(0, 0, cache_w_, cache_h_, area.x, y0, area.x + area.w, y0 + area.h,
+  glBlitFramebuffer(c0, 0, c1, cache_h_, x0, y0, x1, y0 + area.h,
                     GL_COLOR_BUFFER_BIT, area.w < cache_w_ ? GL_LINEAR : GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
@@ -199,6 +212,7 @@ void Display::map_to_cache(float spp, const DisplayParams& p) {
   glUniform1f(loc_exposure_, p.exposure);
   glUniform1f(loc_gamma_, p.gamma);
   glUniform1i(loc_mode_, p.mode);
+  glUniform1i(loc_tonemap_, p.tonemap);
   glUniform3f(loc_lum_, float(kLuminanceWeights[0]), float(kLuminanceWeights[1]),
               float(kLuminanceWeights[2]));
   glBindVertexArray(vao_);

@@ -13,6 +13,7 @@ struct DisplayParams {
   float exposure = 1.0f;  // linear scale
   float gamma = 2.2f;
   int mode = 0;           // 0 image, 1 relative standard error per pixel
+  int tonemap = 0;        // 0 the report's mapping (clip), 1 ACES filmic
 };
 
 // A rectangle in framebuffer pixels, origin at the top left.
@@ -35,6 +36,10 @@ class Display {
   // display parameters change: a plain copy is all most frames pay.
   void draw(const PixelRect& area, int framebuffer_height, float spp,
             const DisplayParams& p);
+  // Draws only the columns from `from` to `to` (fractions of the width) of
+  // the image at the same place: the held image's side of a wipe.
+  void draw_columns(const PixelRect& area, int framebuffer_height, float spp,
+                    const DisplayParams& p, float from, float to);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -52,7 +57,7 @@ class Display {
   float cache_spp_ = -1.0f;
   DisplayParams cache_params_;
   int loc_spp_ = -1, loc_exposure_ = -1, loc_gamma_ = -1, loc_mode_ = -1,
-      loc_lum_ = -1, loc_sums_ = -1, loc_sq_ = -1;
+      loc_lum_ = -1, loc_sums_ = -1, loc_sq_ = -1, loc_tonemap_ = -1;
 };
 
 // Where the image goes inside `area`: 1:1 or an integer zoom if it fits

@@ -17,6 +17,8 @@ void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& 
   if (keys.s) req.save = true;
   if (keys.c) req.print_camera = true;
   if (keys.escape) req.quit = true;
+  if (keys.undo) req.undo = true;
+  if (keys.redo) req.redo = true;
 }
 
 void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
@@ -38,6 +40,14 @@ KeyPresses read_keys() {
   k.s = ImGui::IsKeyPressed(GLFW_KEY_S, false);
   k.c = ImGui::IsKeyPressed(GLFW_KEY_C, false);
   k.escape = ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false);
+  const ImGuiIO& io = ImGui::GetIO();
+  if (io.KeyCtrl) {
+    const bool z = ImGui::IsKeyPressed(GLFW_KEY_Z, true);
+    k.undo = z && !io.KeyShift;
+    k.redo = (z && io.KeyShift) || ImGui::IsKeyPressed(GLFW_KEY_Y, true);
+    // Ctrl+letter is never the letter's own shortcut.
+    k.r = k.s = k.c = false;
+  }
   return k;
 }
 

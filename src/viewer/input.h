@@ -15,6 +15,8 @@ struct KeyPresses {
   bool s = false;       // save
   bool c = false;       // print the camera as JSON
   bool escape = false;  // quit
+  bool undo = false;    // Ctrl+Z
+  bool redo = false;    // Ctrl+Y or Ctrl+Shift+Z
 };
 
 // Adds the keys' requests to `req`; none while ImGui takes keyboard input

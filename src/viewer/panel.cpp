@@ -9,63 +9,12 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "viewer/panel_parts.h"
 #include "viewer/viewer_state.h"
 
 namespace whisker {
 
 float report_exposure() { return 1.0f / std::pow(255.0f, 2.2f); }
-
-// 1234567 -> "1.23 M".
-static std::string human(double v) {
-  const char* units[] = {"", " k", " M", " G", " T"};
-  int u = 0;
-  while (std::fabs(v) >= 1000.0 && u < 4) {
-    v /= 1000.0;
-    ++u;
-  }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, u ? "%.2f%s" : "%.0f%s", v, units[u]);
-  return buf;
-}
-
-static void stats(ViewerState& s, double now) {
-  const Snapshot& sn = s.snap;
-  const bool stale = sn.generation != s.generation;
-  const char* status = s.paused           ? "paused"
-                       : sn.preview       ? "preview (1 sample per 4x4 block)"
-                       : sn.done          ? "done (target reached)"
-                                          : "rendering";
-  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, status);
-  const double secs = sn.seconds > 0.0 ? sn.seconds : 0.0;
-  ImGui::Text("%llu spp   %llu passes   %.2f passes/s%s", (unsigned long long)sn.spp,
-              (unsigned long long)sn.passes, secs > 0.0 ? sn.passes / secs : 0.0,
-              stale ? "  (before the edit)" : "");
-  ImGui::Text("%s rays/s   render %.1f s   since change %.1f s",
-              human(secs > 0.0 ? sn.rays / secs : 0.0).c_str(), secs, now - s.last_change);
-  if (std::isfinite(s.rse))
-    ImGui::Text("rel. std. error  %.3g %%", 100.0 * s.rse);
-  else
-    ImGui::Text("rel. std. error  n/a (needs 2 spp)");
-  if (sn.nan_count)
-    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "NaN/Inf dropped %llu",
-                       (unsigned long long)sn.nan_count);
-  else
-    ImGui::Text("NaN/Inf dropped 0");
-  ImGui::SameLine();
-  if (s.nodes)
-    ImGui::Text("  triangles %zu  BVH nodes %zu", s.triangles, s.nodes);
-  else
-    ImGui::Text("  triangles %zu", s.triangles);
-  if (s.frame_ms_avg > 0.0f)
-    ImGui::Text("UI frame %.1f ms (mean of the last 30 drawn)", s.frame_ms_avg);
-  // The error against render time, log scale, this generation only.
-  if (s.rse_history.size() >= 2) {
-    char overlay[48];
-    std::snprintf(overlay, sizeof overlay, "log10 rel. error, per pass");
-    ImGui::PlotLines("##rse", s.rse_history.data(), int(s.rse_history.size()), 0, overlay,
-                     FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 40.0f * ImGui::GetIO().FontGlobalScale));
-  }
-}
 
 static bool material_editor(Material& m, float* radius, float* inner_radius) {
   bool changed = false;
@@ -79,6 +28,8 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
     }
     ImGui::EndCombo();
   }
+  tip("diffuse: matte; mirror: perfect reflection; glass: solid refracting glass; "
+      "hollow glass: a glass shell with an air bubble inside.");
   if (changed) {
     // A hollow sphere needs a bubble: the report's 9.8 inside 10.
     if (inner_radius && m.kind == MaterialKind::HollowGlass && radius &&
@@ -87,11 +38,17 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
   }
   if (m.kind == MaterialKind::Diffuse)
     changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
+  if (m.kind == MaterialKind::Diffuse) tip("Fraction of light reflected, per colour channel.");
   if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
     changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f");
+  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+    tip("How strongly the glass bends light: 1.0 air, 1.33 water, 1.5 window glass. "
+        "Drag, or double-click to type.");
   if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
     changed |= ImGui::DragFloat("bubble radius", inner_radius, 0.02f, 0.0f,
                                 *radius, "%.2f");
+  if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
+    tip("Radius of the air bubble inside the sphere; the shell is the difference.");
   return changed;
 }
 
@@ -107,32 +64,33 @@ static void setting_checkboxes(RenderSettings& r) {
   }
 }
 
-// Pause, restart and save, and the last load / save message.
-static void controls(const ViewerState& s, PanelRequests& req) {
-  if (ImGui::Button(s.paused ? "Resume (Space)" : "Pause (Space)")) req.toggle_pause = true;
-  ImGui::SameLine();
-  if (ImGui::Button("Restart (R)")) req.restart = true;
-  ImGui::SameLine();
-  if (ImGui::Button("Save (S)")) req.save = true;
-  if (!s.message.empty()) {
-    if (s.message_is_error)
-      ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", s.message.c_str());
-    else
-      ImGui::TextWrapped("%s", s.message.c_str());
-  }
-}
-
 static void display_section(ViewerState& s) {
   if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
+  tip("Brightness of the display in photographic stops: +1 doubles, -1 halves. "
+      "0 is the report's mapping. Never restarts the render; Save uses it too.");
   ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f");
-  static const char* modes[] = {"image", "noise (rel. std. error)"};
-  ImGui::Combo("view", &s.display.mode, modes, 2);
+  tip("Display gamma; the report uses 2.2.");
+  static const char* curves[] = {"report (clip at white)", "ACES filmic"};
+  ImGui::Combo("tone curve", &s.display.tonemap, curves, 2);
+  tip("How bright values map to the screen. 'report': linear, anything above white "
+      "clips (the report's mapping). 'ACES filmic': highlights roll off smoothly "
+      "(Narkowicz 2015 fit), after the exposure.");
+  static const char* modes[] = {"image", "noise per pixel", "normals", "material colours",
+                                "depth"};
+  ImGui::Combo("view", &s.display.mode, modes, kViewModes);
+  tip("'noise per pixel': each pixel's relative standard error in false colour, "
+      "blue 0.1 % to red 100 % (log scale); black where a pixel has no light. "
+      "'normals', 'material colours', 'depth': what the camera sees first through "
+      "each pixel, to check geometry and materials. The legend is at the image's "
+      "bottom left. Rendering goes on meanwhile.");
   if (ImGui::Button("Report mapping")) {
     s.exposure_stops = 0.0f;
     s.display.gamma = 2.2f;
     s.display.mode = 0;
+    s.display.tonemap = 0;
   }
+  tip("Back to exposure 0, gamma 2.2, report tone curve, image view.");
 }
 
 static void scene_section(ViewerState& s, PanelRequests& req) {
@@ -142,18 +100,26 @@ static void scene_section(ViewerState& s, PanelRequests& req) {
       if (ImGui::Selectable(name.c_str(), name == s.scene_label)) req.load_scene = name;
     ImGui::EndCombo();
   }
+  tip("The scenes that come with Whisker (assets/scenes). Loading one replaces the "
+      "current scene and its settings.");
   const bool enter = ImGui::InputText("path", &s.path_field,
                                       ImGuiInputTextFlags_EnterReturnsTrue);
+  tip("A scene file (.json) to load: type or paste the path, then Enter or Load.");
   ImGui::SameLine();
   if ((ImGui::Button("Load") || enter) && !s.path_field.empty())
     req.load_scene = s.path_field;
+  tip("Load the scene file named in 'path'.");
 }
 
 static void light_section(PointLight& light) {
   if (!ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::DragFloat3("position", &light.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  tip("Where the point light is (x, y, z in scene units). Drag a number sideways, "
+      "or double-click it to type; a typed value applies on Enter.");
   ImGui::DragFloat("intensity", &light.intensity, light.intensity * 0.005f + 1.0f,
                    0.0f, 1e14f, "%.3g", ImGuiSliderFlags_Logarithmic);
+  tip("The light's power. Light falls off with the square of the distance, so "
+      "scenes use large values (the cat: 2e10).");
 }
 
 // The render settings' own widgets, one per setting, in one row of
@@ -161,7 +127,9 @@ static void light_section(PointLight& light) {
 static void settings_widgets(RenderSettings& r) {
   setting_checkboxes(r);
   ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
+  tip("Most bounces a path may take (mirror, glass and, with indirect, diffuse).");
   ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
+  tip("Samples per pixel each pass adds. More per pass: fewer, slower image updates.");
 }
 
 // Splitting: paths per sample from its first and second diffuse hits.
@@ -173,15 +141,27 @@ static void split_widgets(RenderSettings& r) {
     if (r.split == kChoices[k]) current = k;
   const std::string preview =
       current >= 0 ? kNames[current] : split_to_string(r.split) + " (command line)";
+  // Splitting happens at diffuse bounces, which only indirect light follows.
+  ImGui::BeginDisabled(!r.indirect);
   if (ImGui::BeginCombo("paths/sample", preview.c_str())) {
     for (int k = 0; k < 4; ++k)
       if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
     ImGui::EndCombo();
   }
+  tip(r.indirect ? "Splitting: at the first (and second) diffuse bounce a sample "
+                   "continues as several paths, whose average is less noisy. 4 x 4: "
+                   "4 at the first bounce, 4 each at the second, up to 16 paths."
+                 : "Off because indirect light is off: paths split only at "
+                   "diffuse bounces.");
   // Channel weights of the split (RenderSettings::split_weights).
   const SettingField& w = setting_field("split_weights");
-  ImGui::SliderFloat3("split r,g,b", &r.split_weights.x, float(w.lo), float(w.hi), "%.2f",
+  ImGui::SliderFloat3("split weights", &r.split_weights.x, float(w.lo), float(w.hi), "%.2f",
                       ImGuiSliderFlags_AlwaysClamp);
+  tip(r.indirect ? "How much each colour channel (r, g, b) counts when deciding how "
+                   "many paths to split into: a path carrying mostly low-weight colour "
+                   "splits less (as --split-weights)."
+                 : "Off because indirect light is off.");
+  ImGui::EndDisabled();
 }
 
 // Applied on release: each change restarts the worker pool.
@@ -189,32 +169,63 @@ static void threads_slider(ViewerState& s, PanelRequests& req) {
   const int hw = int(std::max(1u, std::thread::hardware_concurrency()));
   if (s.threads_edit <= 0) s.threads_edit = s.threads;
   ImGui::SliderInt("threads", &s.threads_edit, 1, std::max(hw, s.threads));
+  tip("Render threads; applied on release. The image does not depend on it.");
   if (ImGui::IsItemDeactivatedAfterEdit() && s.threads_edit != s.threads)
     req.threads = s.threads_edit;
   if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
+}
+
+static bool scene_has_glass(const Scene& e) {
+  const auto glass = [](const Material& m) {
+    return m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass;
+  };
+  for (const SphereObject& sp : e.spheres)
+    if (glass(sp.material)) return true;
+  for (const MeshObject& m : e.meshes)
+    if (glass(m.material)) return true;
+  return false;
 }
 
 static void sampling_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings& r = s.edited.settings;
   settings_widgets(r);
+  if (!scene_has_glass(s.edited))
+    ImGui::TextDisabled("(no glass in this scene: Fresnel changes nothing)");
   split_widgets(r);
   if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
-  if (r.target_spp == 0) {
-    ImGui::SameLine();
-    ImGui::TextDisabled("(never stop)");
-  }
+  tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
+      "Enter; raising it, or +, carries on from the current image.");
   threads_slider(s, req);
 }
 
-static void camera_section(Camera& camera, PanelRequests& req) {
+static void bookmarks(const ViewerState& s, PanelRequests& req) {
+  if (ImGui::Button("Bookmark")) req.bookmark = true;
+  tip("Remember this camera; the numbered buttons go back to it.");
+  for (std::size_t k = 0; k < s.bookmarks.size() && k < 9; ++k) {
+    ImGui::SameLine();
+    ImGui::PushID(int(k));
+    if (ImGui::Button(std::to_string(k + 1).c_str())) req.goto_bookmark = int(k);
+    ImGui::PopID();
+    tip("Go to this bookmarked camera.");
+  }
+}
+
+static void camera_section(ViewerState& s, PanelRequests& req) {
+  Camera& camera = s.edited.camera;
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::DragFloat3("eye", &camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  tip("Camera position (x, y, z). Or left-drag on the image to orbit.");
   ImGui::DragFloat3("look at", &camera.look_at.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  tip("The point the camera looks at and orbits around.");
   ImGui::SliderFloat("fov (deg)", &camera.fov_deg, 5.0f, 150.0f, "%.1f");
+  tip("Field of view in degrees: smaller zooms in.");
   if (ImGui::Button("Reset camera")) req.reset_camera = true;
+  tip("Back to the camera of the scene as loaded.");
   ImGui::SameLine();
   if (ImGui::Button("Print JSON (C)")) req.print_camera = true;
+  tip("Print the camera as scene-file JSON to the terminal, to paste into a scene.");
+  bookmarks(s, req);
   ImGui::TextDisabled("left drag orbit, right/middle drag pan, wheel dolly");
 }
 
@@ -252,15 +263,18 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
 
-  stats(s, now);
+  status_section(s, now);
   controls(s, req);
   display_section(s);
+  compare_section(s, req);
+  save_section(s, req);
   scene_section(s, req);
   light_section(s.edited.light);
   sampling_section(s, req);
-  camera_section(s.edited.camera, req);
+  camera_section(s, req);
   objects_section(s.edited);
 
+  confirm_load_popup(s, req);
   ImGui::PopItemWidth();
   ImGui::End();
 }

@@ -23,6 +23,8 @@
 #include "viewer/controller.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
+#include "viewer/overlay.h"
+#include "viewer/scene_diff.h"
 #include "viewer/script.h"
 #include "viewer/viewer_state.h"
 #include "viewer/window.h"
@@ -101,6 +103,8 @@ struct Session {
   const ViewerOptions& opt;
   GLFWwindow* window;
   Display& display;
+  Display& held_display;  // the A/B comparison's held image
+  Display& debug_display;  // normals, material colours, depth
   ProgressiveRenderer& renderer;
   ViewerState& s;
   float panel_w;  // window units
@@ -112,6 +116,8 @@ struct Session {
   double last_frame = -1.0;
   std::uint64_t rse_generation = 0;
   std::uint64_t title_spp = ~0ull;
+  std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
+  Scene debug_scene;                     // what s.debug shows
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -151,6 +157,8 @@ struct Session {
     ImGui::NewFrame();
 
     PanelRequests req;
+    s.progress = renderer.pass_progress();
+    update_debug_view();
     const float panel = std::min(panel_w, f.win_w);
     draw_panel(s, f.win_w, f.win_h, panel, t0, req);
 
@@ -162,15 +170,42 @@ struct Session {
     const PixelRect rect = fit_image(area, img_w, img_h);
 
     map_keys(read_keys(), imgui_wants_keyboard(), req);
+    req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
+    req.editing = ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown();
+    const std::string dropped = take_dropped_file();
+    if (!dropped.empty()) {
+      std::string error;
+      request_for_drop(dropped, req, error);
+      if (!error.empty()) s.message = error, s.message_is_error = true;
+    }
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
     mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);
 
     ctl.carry_out(req, t0);
     if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (s.held.spp > 0 && s.held.version != held_uploaded) {
+      held_display.upload(s.held, true);
+      held_uploaded = s.held.version;
+    }
+    // Over the image: legend, wipe line, the pixel under the mouse (not in a
+    // scripted screenshot, which compares with the headless render).
+    const ImageArea image_area{rect.x / f.fb_per_win, rect.y / f.fb_per_win, rect.w / f.fb_per_win,
+                         rect.h / f.fb_per_win};
+    draw_image_overlays(s, image_area, opt.screenshot_path.empty());
     // Switching to the noise view needs the sums of squares on the GPU.
     if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
     return rect;
+  }
+
+  // A debug view follows the applied scene (camera moves included).
+  void update_debug_view() {
+    if (s.display.mode < kViewNormals) return;
+    if (s.debug.view == s.display.mode && classify_change(debug_scene, s.applied) == SceneChange::None)
+      return;
+    s.debug = render_debug_view(s.applied, s.display.mode);
+    debug_scene = s.applied;
+    debug_display.upload(s.debug.image, false);
   }
 
   void update_title() {
@@ -187,7 +222,16 @@ struct Session {
     glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     s.display.exposure = report_exposure() * std::exp2(s.exposure_stops);
-    display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+    const bool held = s.held.spp > 0 && held_display.width() > 0;
+    if (s.display.mode >= kViewNormals) {
+      debug_display.draw(rect, f.fb_h, 1.0f, DisplayParams{1.0f, 1.0f, 0, 0});
+    } else if (held && s.compare == kCompareHeld) {
+      held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
+    } else {
+      display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+      if (held && s.compare == kCompareWipe)
+        held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
+    }
     glViewport(0, 0, f.fb_w, f.fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   }
@@ -221,13 +265,14 @@ struct Session {
       script.apply_due_edit(s);
       const FrameSize f = frame_size(window);
       const PixelRect rect = panel_and_input(f, t0);
-      const bool finish = script.finished(s);
+      // Without --screenshot the window stays open after --frames passes
+      // (the target stops the render there).
+      const bool finish = !opt.screenshot_path.empty() && script.finished(s);
       update_title();
       render(f, rect);
 
       const double t_work = glfwGetTime();
-      if (finish && !opt.screenshot_path.empty() &&
-          !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
+      if (finish && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
         exit_code = 1;
       glfwSwapBuffers(window);
       record_timing(t0, t_work, glfwGetTime(), finish);
@@ -255,6 +300,7 @@ void init_state(ViewerState& s, const ViewerOptions& opt) {
   s.initial = s.applied = s.edited = opt.scene;
   s.scene_label = scene_label_of(opt.scene, opt.scene_path);
   s.path_field = opt.scene_path;
+  s.scene_path = opt.scene_path;
   try {
     s.scene_names = list_scenes();
   } catch (const std::exception& e) {
@@ -285,9 +331,9 @@ int run_viewer(const ViewerOptions& opt) {
     std::fprintf(stderr, "whisker: %s\n", window.error().c_str());
     return 3;
   }
-  Display display;
+  Display display, held_display, debug_display;
   std::string error;
-  if (!display.init(error)) {
+  if (!display.init(error) || !held_display.init(error) || !debug_display.init(error)) {
     std::fprintf(stderr, "whisker: %s\n", error.c_str());
     return 1;
   }
@@ -307,7 +353,8 @@ int run_viewer(const ViewerOptions& opt) {
   renderer.start();
   s.last_change = glfwGetTime();
 
-  Session session{opt, window.handle(), display, renderer, s, kPanelWidth * imgui.ui_scale()};
+  Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
+                  kPanelWidth * imgui.ui_scale()};
   const int exit_code = session.run();
   session.print_summary();
   renderer.stop();

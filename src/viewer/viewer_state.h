@@ -7,7 +7,9 @@
 
 #include "render/progressive.h"
 #include "scene/scene.h"
+#include "viewer/debug_views.h"
 #include "viewer/display.h"
+#include "viewer/history.h"
 
 namespace whisker {
 
@@ -20,8 +22,21 @@ struct PanelRequests {
   bool print_camera = false;
   bool quit = false;
   std::string load_scene;  // name or path
+  std::string load_mesh;   // an OBJ for the current scene's meshes
   int threads = 0;         // > 0: new thread count
+  bool typing = false;     // a text field has the keyboard: hold the edits
+  bool hold = false;       // keep the current image for comparison
+  bool undo = false, redo = false;
+  bool save_scene = false;  // the applied scene as a scene file
+  bool bookmark = false;    // remember the camera
+  int goto_bookmark = -1;   // >= 0: take that bookmark's camera
+  bool editing = false;     // a widget or a mouse button is held: one undo step
+  bool confirm_load = false;  // discard the edits and load s.pending_load
 };
+
+// The A/B comparison: an image held back, shown instead of or beside the
+// live one.
+enum CompareMode : int { kCompareOff = 0, kCompareHeld = 1, kCompareWipe = 2 };
 
 struct ViewerState {
   Scene initial;   // as loaded: what "reset camera" returns to
@@ -30,7 +45,9 @@ struct ViewerState {
   std::string scene_label;
   std::vector<std::string> scene_names;
   std::string path_field;
+  std::string scene_path;  // the file the current scene came from
   std::string save_dir = ".";
+  std::string save_name;  // file name without extension; empty: SCENE-Nspp
   std::string message;  // last save / load result shown in the panel
   bool message_is_error = false;
 
@@ -41,6 +58,7 @@ struct ViewerState {
   double last_change = 0.0;      // glfwGetTime() of the last edit
 
   Snapshot snap;
+  ProgressiveRenderer::PassProgress progress;  // the pass in flight
   double rse = 0.0;  // relative standard error of snap
   std::size_t triangles = 0;
   std::size_t nodes = 0;  // 0: not known
@@ -49,6 +67,18 @@ struct ViewerState {
 
   float exposure_stops = 0.0f;  // relative to the report's mapping
   DisplayParams display;
+
+  EditHistory history;
+  std::vector<Camera> bookmarks;
+  std::string pending_load;  // a load waiting for "discard the edits?"
+  std::string pending_mesh;  // with this OBJ for its meshes
+
+  DebugImage debug;       // the debug view on screen (display.mode >= 2)
+
+  Snapshot held;          // the image held for comparison (spp 0: none)
+  std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
+  int compare = kCompareOff;
+  float wipe = 0.5f;      // held image left of this fraction of the width
 
   // UI frame times (ms), for the panel and scripted-run summaries.
   std::vector<float> frame_ms;

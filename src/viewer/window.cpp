@@ -1,3 +1,4 @@
+#include <string>
 #include "viewer/window.h"
 
 #include <algorithm>
@@ -15,6 +16,7 @@ namespace {
 
 std::string g_glfw_error;
 int g_redraw = 0;  // frames to draw because of input
+std::string g_dropped;  // the last file dropped on the window
 
 void on_glfw_error(int code, const char* text) {
   g_glfw_error = std::string(text ? text : "") + " (GLFW error " + std::to_string(code) + ")";
@@ -33,11 +35,21 @@ void install_redraw_callbacks(GLFWwindow* w) {
   glfwSetWindowFocusCallback(w, [](GLFWwindow*, int) { mark_redraw(); });
   glfwSetFramebufferSizeCallback(w, [](GLFWwindow*, int, int) { mark_redraw(); });
   glfwSetWindowRefreshCallback(w, [](GLFWwindow*) { mark_redraw(); });
+  glfwSetDropCallback(w, [](GLFWwindow*, int count, const char** paths) {
+    if (count > 0 && paths[0]) g_dropped = paths[0];
+    mark_redraw();
+  });
 }
 
 }  // namespace
 
 const std::string& last_glfw_error() { return g_glfw_error; }
+
+std::string take_dropped_file() {
+  std::string path;
+  path.swap(g_dropped);
+  return path;
+}
 
 bool redraw_pending() { return g_redraw > 0; }
 void take_redraw() {

@@ -70,6 +70,8 @@ class ImGuiSession {
 // Input (or a window event) asks for a few frames to be drawn so ImGui can
 // settle; the loop takes one of them per drawn frame.
 bool redraw_pending();
+// The file dropped on the window since the last call ("" if none).
+std::string take_dropped_file();
 void take_redraw();
 
 }  // namespace whisker

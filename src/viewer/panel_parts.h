@@ -1,0 +1,24 @@
+// The panel's sections (panel.cpp, panel_status.cpp), drawn in order by
+// draw_panel().
+#pragma once
+
+#include "viewer/viewer_state.h"
+
+namespace whisker {
+
+// A plain-language tooltip for the last widget (also when it is disabled).
+void tip(const char* text);
+
+// State, progress toward the target, speed, error and its plot: a fixed
+// number of lines, so nothing below moves while it renders.
+void status_section(const ViewerState& s, double now);
+// Pause, restart, save; the last message in a fixed two-line box.
+void controls(const ViewerState& s, PanelRequests& req);
+// Where Save writes, and under which name; Save scene.
+void save_section(ViewerState& s, PanelRequests& req);
+// Asks before a load throws away edits that could be undone.
+void confirm_load_popup(ViewerState& s, PanelRequests& req);
+// Hold the current image and compare it with the live one.
+void compare_section(ViewerState& s, PanelRequests& req);
+
+}  // namespace whisker

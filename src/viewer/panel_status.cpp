@@ -1,0 +1,262 @@
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "viewer/panel_parts.h"
+#include "viewer/readout.h"
+
+namespace whisker {
+
+void tip(const char* text) {
+  if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
+  ImGui::TextUnformatted(text);
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
+}
+
+namespace {
+
+// 1234567 -> "1.23 M".
+std::string human(double v) {
+  const char* units[] = {"", " k", " M", " G", " T"};
+  int u = 0;
+  while (std::fabs(v) >= 1000.0 && u < 4) {
+    v /= 1000.0;
+    ++u;
+  }
+  char buf[32];
+  std::snprintf(buf, sizeof buf, u ? "%.2f%s" : "%.0f%s", v, units[u]);
+  return buf;
+}
+
+const char* state_text(const ViewerState& s) {
+  const Snapshot& sn = s.snap;
+  if (s.paused) return "paused";
+  if (sn.preview) return "preview (1 sample per 4x4 block)";
+  if (sn.done && sn.generation == s.generation) return "done: target reached";
+  return "rendering";
+}
+
+ProgressInfo progress_of(const ViewerState& s) {
+  const Snapshot& sn = s.snap;
+  ProgressInput in;
+  const bool same = sn.generation == s.generation && !sn.preview;
+  in.spp_done = same ? sn.spp : 0;
+  in.seconds_done = same ? sn.seconds : 0.0;
+  in.target_spp = s.applied.settings.target_spp;
+  const auto& p = s.progress;
+  // A finished pass is counted once it is published, not as in flight.
+  if (p.rendering && p.generation == s.generation && !s.paused && p.tiles_done < p.tiles_total) {
+    in.pass_spp = p.pass_spp;
+    in.tiles_done = p.tiles_done;
+    in.tiles_total = p.tiles_total;
+    in.pass_seconds = p.pass_seconds;
+  }
+  return estimate_progress(in);
+}
+
+// The bar toward the target (or through the pass without one), then time.
+void progress_lines(const ViewerState& s) {
+  const ProgressInfo p = progress_of(s);
+  const int target = s.applied.settings.target_spp;
+  char overlay[96];
+  if (target > 0)
+    std::snprintf(overlay, sizeof overlay, "%.0f / %d spp", std::floor(p.done_spp), target);
+  else
+    std::snprintf(overlay, sizeof overlay, "%.0f spp (no target)", std::floor(p.done_spp));
+  ImGui::ProgressBar(target > 0 ? float(p.fraction) : float(p.pass_fraction), ImVec2(-1, 0),
+                     overlay);
+  tip("Samples per pixel so far against the target (Sampling > target spp). "
+      "Without a target the bar shows the pass in flight.");
+  const auto& pr = s.progress;
+  const bool in_pass = pr.rendering && pr.generation == s.generation && !s.paused &&
+                       pr.tiles_done < pr.tiles_total;
+  char pass[48] = "pass: -";
+  if (in_pass) std::snprintf(pass, sizeof pass, "pass: %d / %d tiles", pr.tiles_done, pr.tiles_total);
+  ImGui::Text("%s  elapsed %s  left %s", pass, format_duration(p.elapsed).c_str(),
+              target <= 0 ? "(no target)" : format_duration(p.eta).c_str());
+  tip("A pass adds 'samples/pass' samples to every pixel, tile by tile; the image "
+      "updates when a pass ends. Time left is estimated from the rate measured so far.");
+  const double pixels = double(std::max(0, s.snap.width)) * std::max(0, s.snap.height);
+  const double secs = s.snap.seconds;
+  ImGui::Text("%s samples/s  %s rays/s  %.2f passes/s",
+              human(p.spp_per_second * pixels).c_str(),
+              human(secs > 0.0 ? s.snap.rays / secs : 0.0).c_str(),
+              secs > 0.0 ? s.snap.passes / secs : 0.0);
+  tip("samples/s: camera samples (one per pixel per spp) per second. With splitting "
+      "each sample continues as several paths (up to 16 with 4 x 4), so paths/s is "
+      "higher. rays/s counts every ray traced: camera, bounce and shadow rays.");
+}
+
+// The relative error against passes, log scale, with its axes.
+void error_plot(const ViewerState& s) {
+  const float h = 74.0f * ImGui::GetIO().FontGlobalScale;
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, h);
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("##errorplot", size);
+  tip("Relative standard error of the image mean after each pass of the current "
+      "render (log scale). Halving it takes four times the samples.");
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float left = 44.0f * ImGui::GetIO().FontGlobalScale, line = ImGui::GetTextLineHeight();
+  const ImVec2 a(p0.x + left, p0.y + 2.0f), b(p0.x + size.x - 4.0f, p0.y + h - line - 2.0f);
+  dl->AddRectFilled(a, b, IM_COL32(30, 30, 36, 255));
+  dl->AddRect(a, b, IM_COL32(110, 110, 120, 255));
+  const std::vector<float>& v = s.rse_history;
+  const ImU32 text = IM_COL32(170, 170, 180, 255);
+  if (v.size() < 2) {
+    dl->AddText(ImVec2(a.x + 6.0f, a.y + 6.0f), text, "the plot starts after pass 2");
+    dl->AddText(ImVec2(a.x, b.y + 1.0f), text, "pass");
+    return;
+  }
+  // Whole decades around the values (log10 of the error).
+  const auto [lo_it, hi_it] = std::minmax_element(v.begin(), v.end());
+  const float lo = std::floor(*lo_it), hi = std::max(lo + 1.0f, std::ceil(*hi_it));
+  const auto y_of = [&](float l) { return b.y - (l - lo) / (hi - lo) * (b.y - a.y); };
+  for (float d = lo; d <= hi + 0.01f; d += 1.0f) {
+    char label[24];
+    std::snprintf(label, sizeof label, "%g%%", 100.0 * std::pow(10.0, double(d)));
+    const float y = y_of(d);
+    dl->AddLine(ImVec2(a.x, y), ImVec2(b.x, y), IM_COL32(70, 70, 80, 255));
+    dl->AddText(ImVec2(p0.x, y - line * 0.5f), text, label);
+  }
+  const std::size_t n = v.size();
+  const auto x_of = [&](std::size_t k) { return a.x + (b.x - a.x) * float(k) / float(n - 1); };
+  for (std::size_t k = 1; k < n; ++k)
+    dl->AddLine(ImVec2(x_of(k - 1), y_of(v[k - 1])), ImVec2(x_of(k), y_of(v[k])),
+                IM_COL32(120, 200, 255, 255), 1.5f);
+  // The history ends at the last published pass; the first pass has no error.
+  const unsigned long long last_pass = std::max<unsigned long long>(s.snap.passes, n);
+  char first[32], last[32];
+  std::snprintf(first, sizeof first, "pass %llu", last_pass - n + 1);
+  std::snprintf(last, sizeof last, "pass %llu", last_pass);
+  dl->AddText(ImVec2(a.x, b.y + 1.0f), text, first);
+  dl->AddText(ImVec2(b.x - ImGui::CalcTextSize(last).x, b.y + 1.0f), text, last);
+}
+
+}  // namespace
+
+void status_section(const ViewerState& s, double now) {
+  const Snapshot& sn = s.snap;
+  const bool stale = sn.generation != s.generation;
+  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s));
+  progress_lines(s);
+  if (std::isfinite(s.rse))
+    ImGui::Text("noise: rel. std. error %.3g %%%s", 100.0 * s.rse,
+                stale ? "  (before the edit)" : "");
+  else
+    ImGui::Text("noise: rel. std. error - (needs 2 spp)%s", stale ? "  (before the edit)" : "");
+  tip("Relative standard error of the image mean: how far the average brightness may "
+      "still be off, from the spread of each pixel's samples. It falls as 1/sqrt(spp). "
+      "'(before the edit)' means the image still shows the previous settings.");
+  error_plot(s);
+  ImGui::Text("NaN/Inf dropped %llu  triangles %zu  since edit %.1f s",
+              (unsigned long long)sn.nan_count, s.triangles, now - s.last_change);
+  tip("Samples that came out not-a-number or infinite are dropped and counted here. "
+      "'since edit': time since the last change that restarted the render.");
+  if (s.frame_ms_avg > 0.0f)
+    ImGui::Text("window redraw %.1f ms", s.frame_ms_avg);
+  else
+    ImGui::Text("window redraw -");
+  tip("Time the viewer takes to draw one frame of this window (mean of the last 30), "
+      "not the render time. Rendering runs on its own threads.");
+}
+
+void controls(const ViewerState& s, PanelRequests& req) {
+  if (ImGui::Button(s.paused ? "Resume (Space)" : "Pause (Space)")) req.toggle_pause = true;
+  tip("Stop or continue adding samples; the image is kept.");
+  ImGui::SameLine();
+  if (ImGui::Button("Restart (R)")) req.restart = true;
+  tip("Throw the samples away and render from the first pass.");
+  ImGui::SameLine();
+  if (ImGui::Button("Save (S)")) req.save = true;
+  tip("Write the image as shown (exposure, tone curve, view) as PNG, and the radiance "
+      "as a float image, into the folder under 'Save'. An existing file is never "
+      "overwritten: a free name (-2, -3, ...) is taken and reported.");
+  ImGui::BeginDisabled(!s.history.can_undo());
+  if (ImGui::Button("Undo (Ctrl+Z)")) req.undo = true;
+  ImGui::EndDisabled();
+  tip("Take back the last edit (a whole drag or typed number is one step). "
+      "Display settings are not edits.");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!s.history.can_redo());
+  if (ImGui::Button("Redo (Ctrl+Y)")) req.redo = true;
+  ImGui::EndDisabled();
+  tip("Do again what Undo took back.");
+  // Two lines, always there, wrapped: a message never moves what is below.
+  const float h = ImGui::GetTextLineHeightWithSpacing() * 2.0f + 4.0f;
+  ImGui::BeginChild("##message", ImVec2(0, h), false, ImGuiWindowFlags_NoScrollbar);
+  ImGui::PushTextWrapPos(0.0f);
+  if (s.message_is_error) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
+  ImGui::TextUnformatted(s.message.c_str());
+  if (s.message_is_error) ImGui::PopStyleColor();
+  ImGui::PopTextWrapPos();
+  ImGui::EndChild();
+  if (!s.message.empty()) tip(s.message.c_str());
+}
+
+void save_section(ViewerState& s, PanelRequests& req) {
+  if (!ImGui::CollapsingHeader("Save")) return;
+  ImGui::InputText("folder", &s.save_dir);
+  tip("Folder Save writes into (created if missing). '.' is the folder the viewer "
+      "was started from.");
+  ImGui::InputTextWithHint("name", (s.scene_label + "-<spp>spp").c_str(), &s.save_name);
+  tip("File name without extension. Empty: the scene's name and the samples per "
+      "pixel. If the file exists, -2, -3, ... is added.");
+  if (ImGui::Button("Save scene")) req.save_scene = true;
+  tip("Write the scene with your edits (objects, light, camera, settings) as a scene "
+      "file (.json) into the folder: load it later with Scene > path, or "
+      "whisker --scene FILE. Named like the image, or SCENE-edited.");
+}
+
+void compare_section(ViewerState& s, PanelRequests& req) {
+  if (!ImGui::CollapsingHeader("Compare (A/B)")) return;
+  if (ImGui::Button("Hold this image")) req.hold = true;
+  tip("Keep a copy of the image as it is now, to compare with the live render after "
+      "an edit (e.g. Fresnel on against off at the same samples per pixel).");
+  ImGui::SameLine();
+  if (s.held.spp > 0)
+    ImGui::TextDisabled("held: %s", s.held_note.c_str());
+  else
+    ImGui::TextDisabled("nothing held");
+  ImGui::BeginDisabled(s.held.spp == 0);
+  static const char* modes[] = {"live only", "held only", "wipe: held left, live right"};
+  ImGui::Combo("show", &s.compare, modes, 3);
+  tip("What the image area shows: the live render, the held image, or both split "
+      "at the wipe line.");
+  ImGui::BeginDisabled(s.compare != kCompareWipe);
+  ImGui::SliderFloat("wipe", &s.wipe, 0.0f, 1.0f, "%.2f");
+  tip("Where the held image (left) ends and the live one (right) begins.");
+  ImGui::EndDisabled();
+  ImGui::EndDisabled();
+}
+
+}  // namespace whisker
+
+namespace whisker {
+
+void confirm_load_popup(ViewerState& s, PanelRequests& req) {
+  if (s.pending_load.empty()) return;
+  if (!ImGui::IsPopupOpen("Discard the edits?")) ImGui::OpenPopup("Discard the edits?");
+  if (!ImGui::BeginPopupModal("Discard the edits?", nullptr, ImGuiWindowFlags_AlwaysAutoResize))
+    return;
+  ImGui::Text("Loading %s replaces the current scene", s.pending_load.c_str());
+  ImGui::Text("and its edits (Save > Save scene keeps them).");
+  if (ImGui::Button("Discard and load")) {
+    req.confirm_load = true;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) {
+    s.pending_load.clear();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
+}  // namespace whisker

@@ -1,0 +1,132 @@
+#include "viewer/readout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+namespace whisker {
+
+ProgressInfo estimate_progress(const ProgressInput& in) {
+  ProgressInfo p;
+  if (in.pass_spp > 0 && in.tiles_total > 0)
+    p.pass_fraction = std::clamp(double(in.tiles_done) / in.tiles_total, 0.0, 1.0);
+  p.done_spp = double(in.spp_done) + p.pass_fraction * in.pass_spp;
+  p.elapsed = in.seconds_done + (in.pass_spp > 0 ? in.pass_seconds : 0.0);
+  // The rate as measured, the pass in flight included, so a long first pass
+  // gives an estimate before it ends.
+  if (p.done_spp > 0.0 && p.elapsed > 0.0) p.spp_per_second = p.done_spp / p.elapsed;
+  if (in.target_spp > 0) {
+    p.fraction = std::clamp(p.done_spp / in.target_spp, 0.0, 1.0);
+    if (p.done_spp >= in.target_spp)
+      p.eta = 0.0;
+    else if (p.spp_per_second > 0.0)
+      p.eta = (in.target_spp - p.done_spp) / p.spp_per_second;
+  }
+  return p;
+}
+
+std::string format_duration(double seconds) {
+  char buf[48];
+  if (!(seconds >= 0.0) || !std::isfinite(seconds)) return "-";
+  if (seconds < 60.0) {
+    std::snprintf(buf, sizeof buf, "%.1f s", seconds);
+  } else if (seconds < 3600.0) {
+    const long s = std::lround(seconds);
+    std::snprintf(buf, sizeof buf, "%ld min %02ld s", s / 60, s % 60);
+  } else {
+    const long m = std::lround(seconds / 60.0);
+    std::snprintf(buf, sizeof buf, "%ld h %02ld min", m / 60, m % 60);
+  }
+  return buf;
+}
+
+PixelReadout read_pixel(const Snapshot& s, int x, int y) {
+  PixelReadout r;
+  if (x < 0 || y < 0 || x >= s.width || y >= s.height || s.spp == 0) return r;
+  const std::size_t p = std::size_t(y) * s.width + x;
+  if (s.sum.size() < 3 * (p + 1)) return r;
+  const double n = double(s.spp);
+  for (int c = 0; c < 3; ++c) r.rgb[c] = float(s.sum[3 * p + c] / n);
+  r.luminance = luminance(glm::vec3(r.rgb[0], r.rgb[1], r.rgb[2]));
+  r.samples = s.spp;
+  if (s.spp >= 2 && !s.preview && s.sum_sq.size() > p) {
+    // Population variance / (n - 1) = sample variance / n: the mean's variance.
+    const double var = std::max(0.0, s.sum_sq[p] / n - r.luminance * r.luminance);
+    r.std_error = std::sqrt(var / (n - 1.0));
+  }
+  return r;
+}
+
+float aces_narkowicz(float x) {
+  x = std::max(x, 0.0f);
+  const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;
+  return std::clamp(x * (a * x + b) / (x * (c * x + d) + e), 0.0f, 1.0f);
+}
+
+void heat_colour(float t, float out[3]) {
+  t = std::clamp(t, 0.0f, 1.0f);
+  for (int c = 0; c < 3; ++c)
+    out[c] = std::clamp(1.5f - std::fabs(4.0f * t - float(3 - c)), 0.0f, 1.0f);
+}
+
+namespace {
+
+unsigned char to8(float v) { return static_cast<unsigned char>(std::floor(v * 255.0f)); }
+
+}  // namespace
+
+std::vector<unsigned char> map_like_display(const Snapshot& s, const DisplayParams& p) {
+  const std::size_t pixels = std::size_t(std::max(0, s.width)) * std::max(0, s.height);
+  std::vector<unsigned char> out(pixels * 3, 0);
+  if (s.sum.size() < pixels * 3) return out;
+  const float spp = float(s.spp);
+  const float inv = s.spp ? 1.0f / spp : 0.0f;  // as mean_image()
+  // exposure * 255^gamma: 1 for the report's mapping (exposure 1/255^2.2).
+  float report_k = float(double(p.exposure) * std::pow(255.0, double(p.gamma)));
+  if (std::fabs(report_k - 1.0f) < 1e-5f) report_k = 1.0f;
+  for (std::size_t k = 0; k < pixels; ++k) {
+    float mean[3];
+    for (int c = 0; c < 3; ++c) mean[c] = s.sum[3 * k + c] * inv;
+    float v[3];
+    if (p.mode == 1) {
+      const float m = luminance(glm::vec3(mean[0], mean[1], mean[2]));
+      const float sq = s.sum_sq.size() > k ? s.sum_sq[k] : 0.0f;
+      const float var = std::max(sq / std::max(spp, 1.0f) - m * m, 0.0f);
+      const float rel = std::sqrt(var / std::max(spp - 1.0f, 1.0f)) / m;
+      if (m > 0.0f)
+        heat_colour((std::log(rel) / std::log(10.0f) + 3.0f) / 3.0f, v);
+      else
+        v[0] = v[1] = v[2] = 0.0f;
+    } else if (p.tonemap == kTonemapAces) {
+      for (int c = 0; c < 3; ++c)
+        v[c] = std::min(std::pow(aces_narkowicz(mean[c] * p.exposure), 1.0f / p.gamma), 1.0f);
+    } else {
+      // The report's mapping in its own form, min(255, (k L)^(1/gamma)) with
+      // k = 1 at exposure 0: at the defaults the PNG matches the headless one
+      // to the bit.
+      for (int c = 0; c < 3; ++c) {
+        const float x = std::max(mean[c] * report_k, 0.0f);
+        const float w = x > 0.0f ? std::pow(x, 1.0f / p.gamma) : 0.0f;
+        out[3 * k + c] = w >= 255.0f ? 255 : static_cast<unsigned char>(w);
+      }
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) out[3 * k + c] = to8(v[c]);
+  }
+  return out;
+}
+
+std::string free_stem(const std::string& dir, const std::string& stem,
+                      const std::vector<std::string>& extensions) {
+  namespace fs = std::filesystem;
+  for (int k = 1;; ++k) {
+    const std::string name = k == 1 ? stem : stem + "-" + std::to_string(k);
+    bool taken = false;
+    std::error_code ec;
+    for (const std::string& ext : extensions) taken |= fs::exists(fs::path(dir) / (name + ext), ec);
+    if (!taken) return name;
+  }
+}
+
+}  // namespace whisker

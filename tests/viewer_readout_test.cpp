@@ -1,0 +1,145 @@
+// The viewer's window-free numbers: progress and time left, a pixel's
+// statistics, the display mapping used for saving, free file names.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "render/image_io.h"
+#include "render/progressive.h"
+#include "scene/scene_io.h"
+#include "viewer/readout.h"
+#include "viewer/viewer_state.h"
+
+using namespace whisker;
+
+TEST(Progress, CountsThePassInFlightAndEstimatesFromTheRate) {
+  ProgressInput in;
+  in.spp_done = 10;
+  in.target_spp = 100;
+  in.seconds_done = 5.0;
+  in.pass_spp = 10;
+  in.tiles_done = 50;
+  in.tiles_total = 100;
+  in.pass_seconds = 2.5;
+  const ProgressInfo p = estimate_progress(in);
+  EXPECT_DOUBLE_EQ(p.pass_fraction, 0.5);
+  EXPECT_DOUBLE_EQ(p.done_spp, 15.0);
+  EXPECT_DOUBLE_EQ(p.elapsed, 7.5);
+  EXPECT_DOUBLE_EQ(p.spp_per_second, 2.0);
+  EXPECT_DOUBLE_EQ(p.fraction, 0.15);
+  EXPECT_DOUBLE_EQ(p.eta, 42.5);  // 85 spp left at 2 spp/s
+}
+
+TEST(Progress, ALongFirstPassAlreadyHasAnEstimate) {
+  ProgressInput in;
+  in.target_spp = 64;
+  in.pass_spp = 64;  // one pass for the whole target
+  in.tiles_done = 16;
+  in.tiles_total = 256;
+  in.pass_seconds = 4.0;
+  const ProgressInfo p = estimate_progress(in);
+  EXPECT_DOUBLE_EQ(p.done_spp, 4.0);
+  EXPECT_DOUBLE_EQ(p.eta, 60.0);  // 15/16 of the pass left
+}
+
+TEST(Progress, NoTargetNoEtaAndNothingDoneNoRate) {
+  ProgressInput in;
+  in.spp_done = 8;
+  in.seconds_done = 2.0;
+  ProgressInfo p = estimate_progress(in);
+  EXPECT_LT(p.fraction, 0.0);
+  EXPECT_LT(p.eta, 0.0);
+  EXPECT_DOUBLE_EQ(p.spp_per_second, 4.0);
+  p = estimate_progress(ProgressInput{});
+  EXPECT_EQ(p.spp_per_second, 0.0);
+  in.target_spp = 8;  // reached
+  EXPECT_EQ(estimate_progress(in).eta, 0.0);
+  EXPECT_EQ(estimate_progress(in).fraction, 1.0);
+}
+
+TEST(Progress, DurationsReadAsTime) {
+  EXPECT_EQ(format_duration(12.34), "12.3 s");
+  EXPECT_EQ(format_duration(185.0), "3 min 05 s");
+  EXPECT_EQ(format_duration(3720.0), "1 h 02 min");
+  EXPECT_EQ(format_duration(-1.0), "-");
+}
+
+TEST(PixelReadout, MeanAndStandardErrorOfThePixel) {
+  Snapshot s;
+  s.width = 2;
+  s.height = 1;
+  s.spp = 2;
+  // Pixel 1 saw grey samples 1 and 3: mean 2, sample variance 2, so the
+  // mean's standard error is sqrt(2 / 2) = 1.
+  s.sum = {0, 0, 0, 4, 4, 4};
+  s.sum_sq = {0, 1 + 9};
+  const PixelReadout r = read_pixel(s, 1, 0);
+  EXPECT_FLOAT_EQ(r.rgb[0], 2.0f);
+  EXPECT_NEAR(r.luminance, 2.0, 1e-6);
+  EXPECT_NEAR(r.std_error, 1.0, 1e-6);
+  EXPECT_EQ(r.samples, 2u);
+  s.spp = 1;
+  EXPECT_LT(read_pixel(s, 1, 0).std_error, 0.0);  // needs 2 samples
+  EXPECT_EQ(read_pixel(s, 2, 0).samples, 0u);     // outside
+}
+
+TEST(ToneCurve, AcesFitValues) {
+  EXPECT_EQ(aces_narkowicz(0.0f), 0.0f);
+  // x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14) at x = 1: 2.54 / 3.16.
+  EXPECT_NEAR(aces_narkowicz(1.0f), 2.54f / 3.16f, 1e-6f);
+  EXPECT_EQ(aces_narkowicz(1e6f), 1.0f);  // highlights roll off to white
+  EXPECT_LT(aces_narkowicz(0.5f), aces_narkowicz(0.6f));
+}
+
+// At the report's mapping the saved PNG is the headless PNG to the bit; an
+// exposure of +1 stop is the report's mapping of twice the radiance.
+TEST(SaveMapping, ReportMappingMatchesTheHeadlessPng) {
+  Scene scene = load_scene(resolve_scene("three-balls"));
+  scene.camera.width = 48;
+  scene.camera.height = 40;
+  scene.settings.spp = 2;
+  scene.settings.target_spp = 2;
+  ProgressiveRenderer r(1);
+  const auto gen = r.set_scene(scene);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 2));
+  Snapshot s;
+  r.snapshot(s);
+  r.stop();
+  const Image img = mean_image(s);
+  DisplayParams p;
+  p.exposure = report_exposure();
+  const auto out = map_like_display(s, p);
+  ASSERT_EQ(out.size(), img.rgb.size());
+  for (std::size_t k = 0; k < out.size(); ++k) ASSERT_EQ(out[k], to_srgb8(img.rgb[k])) << k;
+
+  p.exposure = 2.0f * report_exposure();
+  const auto brighter = map_like_display(s, p);
+  int off = 0;
+  for (std::size_t k = 0; k < out.size(); ++k)
+    off += std::abs(int(brighter[k]) - int(to_srgb8(2.0f * img.rgb[k]))) > 1;
+  EXPECT_EQ(off, 0);
+  p.tonemap = kTonemapAces;
+  const auto aces = map_like_display(s, p);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const float v = std::pow(aces_narkowicz(img.rgb[k] * p.exposure), 1.0f / 2.2f);
+    ASSERT_NEAR(aces[k], std::floor(v * 255.0f), 1.0) << k;
+  }
+}
+
+TEST(SaveName, NeverOverwrites) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("whisker-free-stem-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<std::string> exts = {".png", ".exr"};
+  EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp");
+  std::ofstream(dir / "cat-16spp.png") << "x";
+  EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-2");
+  std::ofstream(dir / "cat-16spp-2.exr") << "x";  // either file takes the name
+  EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-3");
+  fs::remove_all(dir);
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# Save writes what the window shows, and never overwrites: in the real
+# window under Xvfb (xdotool) the exposure is set to -2 stops by typing into
+# its slider, then S is pressed twice. The first PNG must be the headless
+# render (the report's mapping) darkened by 2 stops, (L/4)^(1/2.2), to one
+# level; the second must get a free name (-2) and the panel's message says so.
+# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+#   viewer_save_test.sh path/to/whisker
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+for tool in xvfb-run xdotool python3; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
+done
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+mkdir "$dir/cwd"
+
+cat >"$dir/drive.sh" <<'INNER'
+#!/usr/bin/env bash
+bin=$1 dir=$2
+press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
+(cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" --scene three-balls --threads 1 --frames 2) \
+  >"$dir/E.out" 2>"$dir/E.err" &
+pid=$!
+wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
+[ -n "$wid" ] || { echo "no viewer window" >>"$dir/E.err"; kill $pid; exit 0; }
+# The title carries the samples per pixel: wait for both passes.
+for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 2 spp$" && break; sleep 0.5; done
+sleep 1
+# Ctrl+click turns the exposure slider (912x800 window, panel right) into a
+# text field.
+xdotool mousemove --window "$wid" 640 331; sleep 0.2
+xdotool keydown ctrl; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; xdotool keyup ctrl; sleep 0.5
+xdotool keydown ctrl; sleep 0.2; xdotool key a; sleep 0.3; xdotool keyup ctrl; xdotool type --delay 150 -- "-2"; sleep 0.3; press Return
+xdotool mousemove --window "$wid" 900 790; sleep 0.5
+press s
+press s
+press Escape
+wait $pid
+echo "exit $?" >>"$dir/E.err"
+INNER
+
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+"$bin" --headless --scene three-balls --frames 2 --threads 1 --quiet --out "$dir/ref.png" >/dev/null 2>&1
+
+cat >"$dir/compare.py" <<'INNER'
+# Reads 8-bit RGB PNGs (no interlace) with zlib alone and compares the saved
+# image with the reference darkened by 2 stops.
+import struct, sys, zlib
+
+def read_png(path):
+    data = open(path, "rb").read()
+    pos, idat, w, h = 8, b"", 0, 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour == 2, "8-bit RGB expected"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride, rows, prev = zlib.decompress(idat), w * 3, [], bytearray(w * 3)
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return w, h, b"".join(rows)
+
+w, h, saved = read_png(sys.argv[1])
+rw, rh, ref = read_png(sys.argv[2])
+assert (w, h) == (rw, rh), "sizes differ"
+# ref = floor(L^(1/2.2)); saved should be floor((L/4)^(1/2.2)) = ref * 4^(-1/2.2) within a level.
+k = 4 ** (-1 / 2.2)
+bad = sum(1 for s, r in zip(saved, ref) if r < 255 and abs(s - r * k) > 1.5)
+bright = sum(1 for s in saved if s > 0)
+print(f"{bad} of {len(saved)} values off; {bright} non-zero")
+sys.exit(0 if bad == 0 and bright > len(saved) // 4 else 1)
+INNER
+
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
+echo "--- E"; cat "$dir/E.out" "$dir/E.err"; ls "$dir/cwd"
+check "E: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/E.err"'
+check "E: the first save is the image at -2 stops" 'python3 "$dir/compare.py" "$dir/cwd/three-balls-2spp.png" "$dir/ref.png"'
+check "E: the second save took a free name and said so" \
+  '[ -f "$dir/cwd/three-balls-2spp-2.png" ] && grep -q "three-balls-2spp was taken, so the name is three-balls-2spp-2" "$dir/E.out"'
+exit $fail

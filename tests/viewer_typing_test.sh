@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# Typing into the panel's fields through the X server (xdotool) under Xvfb:
+#   C. typing "nosuch2" into the scene path field saves nothing (the S in it
+#      is text, not the Save shortcut) and restarts nothing;
+#   U. a drag on the image orbits the camera; Ctrl+Z puts it back (the whole
+#      drag is one step) and Ctrl+Y orbits it again;
+#   D. `--frames 2` without --screenshot keeps the window open once the two
+#      passes are done; typing 15 into "target spp" applies once, on Enter
+#      (not 1 and then 15), and raising the target carries the accumulation
+#      on in the same generation up to 15 samples per pixel.
+# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+#   viewer_typing_test.sh path/to/whisker
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+for tool in xvfb-run xdotool; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
+done
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+mkdir "$dir/cwd"
+
+cat >"$dir/drive.sh" <<'INNER'
+#!/usr/bin/env bash
+bin=$1 dir=$2
+press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
+click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
+combo() { xdotool keydown ctrl; sleep 0.2; press "$1"; xdotool keyup ctrl; sleep 0.3; }  # held: a frame sees it
+typed() { xdotool type --delay 150 "$1"; sleep 0.5; }
+session() {  # name args actions...
+  local name=$1 args=$2; shift 2
+  (cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" --scene three-balls --threads 1 $args) \
+    >"$dir/$name.out" 2>"$dir/$name.err" &
+  local pid=$!
+  wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
+  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$name.err"; kill $pid; return; }
+  sleep 2
+  "$@"
+  press Escape
+  wait $pid
+  echo "exit $?" >>"$dir/$name.err"
+}
+. "$dir/layout.sh"
+C() { click $PATH_X $PATH_Y; combo a; typed nosuch2; press Return; }
+D() { sleep 2; echo "alive after 2 passes" >"$dir/D.alive"; click $TARGET_X $TARGET_Y; combo a;
+      typed 15; sleep 2; press Return
+      # The title carries the samples per pixel: wait (on a busy machine too) for 15.
+      for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 15 spp$" && break; sleep 0.5; done; }
+U() { xdotool mousemove --window "$wid" 256 400; sleep 0.2; xdotool mousedown 1; sleep 0.2
+      for k in 1 2 3 4 5 6; do xdotool mousemove --window "$wid" $((256 + 10 * k)) 400; sleep 0.1; done
+      xdotool mouseup 1; sleep 0.5; combo z; press c; combo y; press c; }
+session C "" C
+session D "--frames 2" D
+session U "" U
+INNER
+
+# Where the fields are in the 912x800 window (image 512 wide, panel right).
+cat >"$dir/layout.sh" <<'INNER'
+PATH_X=640 PATH_Y=538
+TARGET_X=620 TARGET_Y=791
+INNER
+
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+
+fail=0
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
+field() { sed -n "s/.*generation \([0-9]*\), [0-9]* passes, \([0-9]*\) spp.*/\\$2/p" "$dir/$1.err"; }
+echo "--- C"; cat "$dir/C.out" "$dir/C.err"; echo "--- D"; cat "$dir/D.out" "$dir/D.err"
+check "C: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/C.err"'
+check "C: typing an s into a field saved nothing" '! grep -q "^saved" "$dir/C.out" && [ -z "$(ls "$dir/cwd")" ]'
+check "C: typing restarted nothing (generation 1)" '[ "$(field C 1)" = 1 ]'
+check "D: the window stayed open after --frames 2" '[ -f "$dir/D.alive" ] && grep -q "^exit 0$" "$dir/D.err"'
+check "D: typing 15 and Enter raised the target without a restart (generation 1)" '[ "$(field D 1)" = 1 ]'
+check "D: the accumulation went on to 15 spp" '[ "$(field D 2)" = 15 ]'
+eye_x() {  # the camera printed by the n-th C press
+  python3 - "$dir/$1.out" "$2" <<'PY'
+import json, sys
+text, n = open(sys.argv[1]).read(), int(sys.argv[2])
+dec, pos, found = json.JSONDecoder(), 0, []
+while True:
+    start = text.find("{", pos)
+    if start < 0: break
+    obj, pos = dec.raw_decode(text, start)
+    found.append(obj["camera"]["position"][0])
+print(found[n - 1] if len(found) >= n else "none")
+PY
+}
+echo "--- U"; cat "$dir/U.err"; grep -A2 position "$dir/U.out"
+check "U: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/U.err"'
+check "U: Ctrl+Z put the orbited camera back (eye x = 0)" '[ "$(eye_x U 1)" = 0.0 ]'
+check "U: Ctrl+Y orbited it again (eye x != 0)" 'x=$(eye_x U 2); [ "$x" != 0.0 ] && [ "$x" != none ]'
+exit $fail
