@@ -32,6 +32,7 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
 status=0
+cd "$build"  # libFuzzer's -jobs logs (fuzz-N.log) land here
 for name in scene obj; do
   work="$build/corpus/$name" findings="$build/findings/$name"
   mkdir -p "$work" "$findings"
@@ -40,15 +41,17 @@ for name in scene obj; do
   # -timeout: one input taking over 10 s is a finding (a hang); -rss_limit_mb
   # likewise for memory. Inputs up to 64 KiB reach every construct of both
   # formats. stdin is closed: no input may wait on the terminal.
+  par=()
+  [ "$jobs" -gt 1 ] && par=(-jobs="$jobs" -workers="$jobs")
   if ! "$build/fuzz_$name" "$work" "$here/corpus/$name" "$here/reproducers/$name" \
       -dict="$here/$name.dict" -max_total_time="$seconds" -max_len=65536 \
       -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$findings/" \
-      -jobs="$jobs" -workers="$jobs" -print_final_stats=1 </dev/null >"$log" 2>&1; then
+      "${par[@]}" -print_final_stats=1 </dev/null >"$log" 2>&1; then
     status=1
     echo "fuzz: $name FOUND A CRASH; inputs in $findings; last lines of the log:" >&2
     tail -n 40 "$log" >&2
   fi
   # With -jobs the per-worker logs are fuzz-N.log in the working folder.
-  grep -h "stat::number_of_executed_units\|Done [0-9]* runs" "$log" ./fuzz-*.log 2>/dev/null | tail -n "$((jobs + 1))" >&2 || true
+  grep -h "stat::number_of_executed_units\|Done [0-9]* runs" "$log" fuzz-*.log 2>/dev/null >&2 || true
 done
 exit $status
