@@ -52,6 +52,6 @@ for name in scene obj; do
     tail -n 40 "$log" >&2
   fi
   # With -jobs the per-worker logs are fuzz-N.log in the working folder.
-  grep -h "stat::number_of_executed_units\|Done [0-9]* runs" "$log" fuzz-*.log 2>/dev/null >&2 || true
+  grep -h "stat::number_of_executed_units\|Done [0-9]* runs" "$log" fuzz-*.log >&2 2>/dev/null || true
 done
 exit $status
