@@ -16,7 +16,8 @@ elseif(NOT WHISKER_SANITIZE STREQUAL "")
 endif()
 
 if(DEFINED _whisker_san)
-  add_compile_options(${_whisker_san} -fno-omit-frame-pointer -g)
+  # -g1: line tables are all a sanitizer report needs, and compile faster than -g.
+  add_compile_options(${_whisker_san} -fno-omit-frame-pointer -g1)
   add_link_options(${_whisker_san})
   # Suppression files for third-party noise, found by the tests' environment
   # (scripts/test.sh --sanitize sets the *SAN_OPTIONS that point at them).

@@ -6,7 +6,8 @@ WHISKER_BUILD=${WHISKER_BUILD:-$WHISKER_ROOT/build}
 
 # Debian packages the build and the tests need.
 WHISKER_PACKAGES=(
-  g++ make cmake pkg-config python3 clang
+  g++ make cmake pkg-config python3
+  clang libclang-rt-14-dev  # the fuzzers: libFuzzer's runtime is only recommended by clang-14
   libglm-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev libopenexr-dev
   libgtest-dev libbenchmark-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth xdotool

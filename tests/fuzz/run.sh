@@ -24,6 +24,12 @@ if ! command -v clang++ >/dev/null 2>&1; then
   echo "fuzz: clang++ not found; skipping the fuzz run (apt-get install clang)" >&2
   exit 77
 fi
+# Debian's clang recommends, but does not require, the runtime with libFuzzer.
+if ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, unsigned long) { return 0; }' |
+    clang++ -x c++ -fsanitize=fuzzer,address,undefined - -o /dev/null 2>/dev/null; then
+  echo "fuzz: clang++ cannot link -fsanitize=fuzzer; skipping (apt-get install libclang-rt-14-dev)" >&2
+  exit 77
+fi
 cmake -S "$here" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >/dev/null
 cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)"
 
