@@ -38,6 +38,10 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # samples in Release (5-10x that under ASan/TSan); it shares its code path
 # with the shorter Progressive.* tests, which do run.
 sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$'
+# TSan looks for data races, and only the renderer (src/render/progressive.*)
+# starts threads: the suites of the geometry and scene layers, which never
+# do, run under ASan + UBSan only (they are most of the TSan run's time).
+tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz)\."
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
 sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay)
@@ -69,7 +73,9 @@ run_sanitized() {
     cd "$dir"
     local label=()
     [ "$name" = asan-viewer ] && label=(-L viewer)
-    ctest --output-on-failure -j "$jobs" -E "$sanitizer_exclude" "${label[@]}" "${ctest_args[@]}"
+    local exclude=$sanitizer_exclude
+    [ "$san" = thread ] && exclude=$tsan_exclude
+    ctest --output-on-failure -j "$jobs" -E "$exclude" "${label[@]}" "${ctest_args[@]}"
   )
 }
 
