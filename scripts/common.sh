@@ -7,6 +7,7 @@ WHISKER_BUILD=${WHISKER_BUILD:-$WHISKER_ROOT/build}
 # Debian packages the build and the tests need.
 WHISKER_PACKAGES=(
   g++ make cmake pkg-config python3
+  clang libclang-rt-14-dev  # the fuzzers: libFuzzer's runtime is only recommended by clang-14
   libglm-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev libopenexr-dev
   libgtest-dev libbenchmark-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth xdotool
@@ -45,4 +46,26 @@ whisker_build() {
   # directory left behind by a failed configure (cache but no Makefile).
   cmake -S "$WHISKER_ROOT" -B "$WHISKER_BUILD" -DCMAKE_BUILD_TYPE=Release || return 1
   cmake --build "$WHISKER_BUILD" -j "$jobs" "${targets[@]}" || return 1
+}
+
+# whisker_build_variant DIR "CMAKE ARGS..." [target...]: configure and build
+# another build folder (the sanitizer builds) with its own cache settings.
+whisker_build_variant() {
+  local dir=$1 args=$2 jobs targets=()
+  shift 2
+  [ $# -gt 0 ] && targets=(--target "$@")
+  jobs=$(nproc 2>/dev/null || echo 2)
+  # shellcheck disable=SC2086
+  cmake -S "$WHISKER_ROOT" -B "$dir" $args >/dev/null || return 1
+  cmake --build "$dir" -j "$jobs" "${targets[@]}" || return 1
+}
+
+# The sanitizers' run-time options: every finding fails its test, and the
+# suppression files (third-party noise only, reasons inside) apply.
+whisker_sanitizer_env() {
+  local supp=$WHISKER_ROOT/tests/sanitizers
+  export ASAN_OPTIONS="abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1"
+  export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
+  export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$supp/ubsan.supp"
+  export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp"
 }

@@ -38,7 +38,7 @@ class Fields {
   void only(const std::vector<const char*>& allowed) const {
     for (const auto& [key, value] : j_.items()) {
       if (std::none_of(allowed.begin(), allowed.end(),
-                       [&](const char* a) { return key == a; })) {
+                       [&key = key](const char* a) { return key == a; })) {
         std::string list;
         for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
         fail(field(key), "unknown key (expected one of: " + list + ")");

@@ -98,7 +98,7 @@ Scan scan(const std::string& path, const std::string& text) {
         const long v = std::strtol(idx.c_str(), &e, 10);
         if (idx.empty() || e != idx.c_str() + idx.size())
           fail(path, line_no, "face index '" + std::string(tok) + "' is not a number");
-        if (v == 0 || (v < 0 && static_cast<std::size_t>(-v) > s.vertices))
+        if (v == 0 || (v < 0 && 0 - static_cast<std::size_t>(v) > s.vertices))
           fail(path, line_no, "face index " + idx + " out of range (" +
                                   std::to_string(s.vertices) + " vertices so far)");
         if (v > s.max_index) {

@@ -1,0 +1,234 @@
+#!/usr/bin/env bash
+# Fault tests of the headless command line: signals during the render and
+# during the write, a full disk, a read-only folder, special files as output
+# targets, and bad input that must be refused with exit 2.
+#   cli_faults.sh WHISKER_BINARY CASE
+# Exit 0 = pass, 1 = fail (with the reason), 77 = skipped (with the reason).
+set -uo pipefail
+bin=$1 case=$2
+work=$(mktemp -d "${TMPDIR:-/tmp}/whisker-faults.XXXXXX")
+mounted=()
+cleanup() {
+  local m
+  for m in "${mounted[@]}"; do umount "$m" 2>/dev/null; done
+  chmod -R u+w "$work" 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+cd "$work" || exit 1
+
+fail() { echo "FAIL [$case]: $*" >&2; exit 1; }
+skip() { echo "SKIP [$case]: $*" >&2; exit 77; }
+note() { echo "[$case] $*" >&2; }
+
+# A quick scene of the given size: the floor wall and one ball.
+scene() {
+  cat >"scene.json" <<JSON
+{"name": "faults", "camera": {"position": [0, 0, 55], "look_at": [0, 0, 0], "width": $1, "height": $2},
+ "light": {"position": [-10, 20, 40]},
+ "spheres": [{"center": [0, -1000, 0], "radius": 990, "material": {"type": "diffuse", "albedo": [0, 0, 1]}},
+             {"center": [0, 0, 0], "radius": 10, "material": {"type": "diffuse", "albedo": [1, 1, 1]}}]}
+JSON
+}
+
+# run ARGS...: the binary with its exit code in $rc, stderr in err.txt.
+run() {
+  "$bin" "$@" >out.txt 2>err.txt
+  rc=$?
+}
+expect_rc() { [ "$rc" -eq "$1" ] || fail "exit $rc, expected $1; stderr: $(head -c 600 err.txt)"; }
+expect_err() { grep -qiE -- "$1" err.txt || fail "stderr does not match /$1/: $(head -c 600 err.txt)"; }
+no_temp_files() {
+  local left
+  left=$(find "${1:-.}" -name '.*.tmp-*' 2>/dev/null)
+  [ -z "$left" ] || fail "temporary files left behind: $left"
+}
+# A PFM at its final name is whole: header plus width x height x 12 bytes.
+pfm_whole() {
+  local f=$1 w=$2 h=$3 size header
+  header=$(printf 'PF\n%d %d\n-1.0\n' "$w" "$h" | wc -c)
+  size=$(stat -c %s "$f")
+  [ "$size" -eq $((header + w * h * 12)) ] || fail "$f is $size bytes, a whole one is $((header + w * h * 12))"
+}
+need_root_mount() {
+  [ "$(id -u)" -eq 0 ] || skip "needs root to mount a small tmpfs (run the tests as root to cover it)"
+  mkdir -p "$1"
+  mount -t tmpfs -o "size=${2:-64k}${3:+,$3}" whisker-faults "$1" 2>/dev/null ||
+    skip "cannot mount a tmpfs here (container without CAP_SYS_ADMIN?)"
+  mounted+=("$PWD/$1")
+}
+have_exr() {
+  scene 8 8
+  "$bin" --headless --scene scene.json --quiet --out-float probe.exr >/dev/null 2>&1
+}
+# Starts a long render in the background (SIGINT not ignored, as in a
+# terminal) with all three outputs; its pid in $pid.
+start_long_render() {
+  scene 128 128
+  env --default-signal=INT "$bin" --headless --scene scene.json --quiet --frames 1000000 --spp 1 \
+    --out img.png --out-float img.pfm --stats stats.json >out.txt 2>err.txt &
+  pid=$!
+  sleep 1.5
+  kill -0 "$pid" 2>/dev/null || fail "the render ended within 1.5 s: $(cat err.txt)"
+}
+# Starts a 1024 x 1024 render, one sample, and waits until the writer's
+# temporary file exists; then sends the signal. Sets $target, $pid.
+signal_mid_write() {
+  local sig=$1 ext=pfm tmp i
+  have_exr && ext=exr
+  scene 1024 1024
+  target=img.$ext
+  for i in 1 2 3 4 5; do
+    rm -f "$target" .img.*
+    env --default-signal=INT "$bin" --headless --scene scene.json --quiet --frames 1 --spp 1 \
+      --depth 0 --out-float "$target" >out.txt 2>err.txt &
+    pid=$!
+    tmp=".$target.tmp-$pid"
+    while [ ! -e "$tmp" ] && kill -0 "$pid" 2>/dev/null; do :; done
+    if [ -e "$tmp" ] && kill -"$sig" "$pid" 2>/dev/null; then
+      wait "$pid"
+      rc=$?
+      note "SIG$sig sent while $tmp existed (attempt $i); exit $rc"
+      return 0
+    fi
+    wait "$pid"
+  done
+  skip "could not catch the write in progress in 5 attempts"
+}
+
+case $case in
+  sigint-render-writes-passes-so-far)
+    # Ctrl-C in a long headless render: the passes completed are written to
+    # every output, the stats say how many, the exit code is 130.
+    start_long_render
+    kill -INT "$pid"
+    wait "$pid"
+    rc=$?
+    expect_rc 130
+    expect_err "interrupt"
+    for f in img.png img.pfm stats.json; do [ -f "$f" ] || fail "$f not written after Ctrl-C"; done
+    pfm_whole img.pfm 128 128
+    passes=$(python3 -c 'import json,sys; print(json.load(open("stats.json"))["passes"])') ||
+      fail "stats.json is not JSON"
+    [ "$passes" -ge 1 ] && [ "$passes" -lt 1000000 ] || fail "stats say $passes passes"
+    no_temp_files
+    ;;
+  sigkill-render-leaves-nothing)
+    # A kill -9 mid-render: nothing at the final names, nothing half-written.
+    start_long_render
+    kill -KILL "$pid"
+    wait "$pid"
+    rc=$?
+    expect_rc 137
+    for f in img.png img.pfm stats.json; do [ ! -e "$f" ] || fail "$f exists after kill -9 mid-render"; done
+    no_temp_files
+    ;;
+  sigint-mid-write-cleans-up)
+    # Ctrl-C while the output is being written: the final name holds nothing
+    # or the whole file, no temporary file stays behind, exit 130.
+    signal_mid_write INT
+    expect_rc 130
+    [ ! -e "$target" ] || [ "${target##*.}" != pfm ] || pfm_whole "$target" 1024 1024
+    no_temp_files
+    ;;
+  sigkill-mid-write-never-partial)
+    # kill -9 while writing: the final name never holds a partial file (the
+    # temporary file may stay: no process can clean up after SIGKILL).
+    signal_mid_write KILL
+    expect_rc 137
+    [ ! -e "$target" ] || fail "$target appeared although the write was killed"
+    ;;
+  disk-full-png | disk-full-pfm | disk-full-exr | disk-full-stats)
+    # Each output kind on a full disk: exit 2 with the reason, nothing at the
+    # final name, no temporary file left.
+    kind=${case#disk-full-}
+    [ "$kind" != exr ] || have_exr || skip "this build has no OpenEXR"
+    need_root_mount full 64k
+    scene 256 256
+    dd if=/dev/zero of=full/filler bs=1k count=64 2>/dev/null  # fills it (dd stops at ENOSPC)
+    case $kind in
+      png) opt=(--out full/img.png) ;; pfm) opt=(--out-float full/img.pfm) ;;
+      exr) opt=(--out-float full/img.exr) ;; stats) opt=(--stats full/stats.json) ;;
+    esac
+    run --headless --scene scene.json --quiet --frames 1 --spp 4 "${opt[@]}"
+    expect_rc 2
+    expect_err "${opt[1]}.*(no space|cannot write)"
+    [ ! -e "${opt[1]}" ] || fail "${opt[1]} exists ($(stat -c %s "${opt[1]}") bytes) after a failed write"
+    no_temp_files full
+    ;;
+  readonly-folder)
+    # Outputs into a folder that cannot be written: refused before rendering.
+    if [ "$(id -u)" -eq 0 ]; then
+      need_root_mount ro 64k ro  # root ignores permission bits; a read-only mount does not
+    else
+      mkdir ro && chmod 555 ro
+    fi
+    scene 32 32
+    for opt in "--out ro/img.png" "--out-float ro/img.pfm" "--stats ro/stats.json"; do
+      # shellcheck disable=SC2086
+      run --headless --scene scene.json --quiet --frames 1 $opt
+      expect_rc 2
+      expect_err "^whisker: ${opt%% *} ro/.*not writable"
+      [ -z "$(ls -A ro)" ] || fail "$opt created $(ls -A ro)"
+    done
+    ;;
+  special-fifo-targets)
+    # A FIFO at an output's name must not be replaced by a regular file.
+    scene 32 32
+    for opt in "--stats stats.json" "--out img.png" "--out-float img.pfm"; do
+      f=${opt#* }
+      rm -f "$f" && mkfifo "$f"
+      # shellcheck disable=SC2086
+      timeout 20 "$bin" --headless --scene scene.json --quiet --frames 1 $opt >out.txt 2>err.txt
+      rc=$?
+      expect_rc 2
+      expect_err "^whisker: ${opt%% *} $f"
+      [ -p "$f" ] || fail "$opt replaced the FIFO $f with $(stat -c %F "$f")"
+    done
+    no_temp_files
+    ;;
+  special-device-target)
+    # A device node (a private copy of /dev/null's, never the real one) as
+    # --stats must not be replaced.
+    [ "$(id -u)" -eq 0 ] || skip "mknod needs root"
+    mknod null c 1 3 || skip "mknod refused here"
+    scene 32 32
+    run --headless --scene scene.json --quiet --frames 1 --stats null
+    expect_rc 2
+    expect_err "^whisker: --stats null"
+    [ -c null ] || fail "--stats replaced the device node with $(stat -c %F null)"
+    ;;
+  float-options-refuse-nan)
+    # Every float option refuses NaN and infinities, naming the option; seeds
+    # are capped as in scene files.
+    scene 32 32
+    for bad in "--intensity nan" "--intensity inf" "--intensity -nan" "--seed -1" \
+               "--seed 99999999999999999999"; do
+      # shellcheck disable=SC2086
+      run --headless --scene scene.json --quiet --frames 1 --stats s.json $bad
+      expect_rc 2
+      expect_err "^whisker: .*${bad%% *}"
+      [ ! -e s.json ] || fail "$bad rendered"
+    done
+    ;;
+  mesh-filesystem-errors)
+    # File-system errors while loading an OBJ (a material library name over
+    # 255 bytes, a symlink loop) are the usual one-line message and exit 2.
+    scene 32 32
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >base.obj
+    { printf 'mtllib %0300d.mtl\n' 0; cat base.obj; } >long.obj
+    ln -s loop loop
+    { echo 'mtllib loop/x.mtl'; cat base.obj; } >loop.obj
+    for obj in long.obj loop.obj; do
+      run --headless --scene cat --mesh "$PWD/$obj" --quiet --frames 1 --spp 1 --stats s.json
+      [ "$rc" -ne 134 ] || fail "$obj aborted the program (exit 134): $(head -c 300 err.txt)"
+      expect_rc 2
+      expect_err "^whisker: .*$obj"
+      [ "$(wc -l <err.txt)" -eq 1 ] || fail "$obj: more than one line: $(head -c 600 err.txt)"
+    done
+    ;;
+  *)
+    fail "unknown case (see the case list in $0)"
+    ;;
+esac
+echo "PASS [$case]"
