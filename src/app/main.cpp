@@ -4,6 +4,7 @@
 
 #include "app/cli.h"
 #include "app/headless.h"
+#include "app/merge.h"
 #include "scene/scene_io.h"
 #ifdef WHISKER_HAVE_VIEWER
 #include "viewer/viewer.h"
@@ -22,6 +23,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_float = cl.out_float;
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
+  h.out_sum = cl.out_sum;
+  if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   return run_headless(h);
 }
 
@@ -58,6 +61,7 @@ int viewer(const CommandLine& cl, const Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "merge") return run_merge(argc - 1, argv + 1);
   CommandLine cl;
   if (const auto code = parse_command_line(argc, argv, cl)) return *code;
   Scene scene;
