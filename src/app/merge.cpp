@@ -85,8 +85,9 @@ int run_merge(int argc, char** argv) {
       std::fprintf(stderr, "whisker: warning: %s; writing the partial merge\n", msg.c_str());
     }
     write(o, acc);
-    std::printf("%s %dx%d: merged %zu parts, samples %s (%llu spp, %llu passes)\n",
+    std::printf("%s %dx%d: merged %zu part%s, samples %s (%llu spp, %llu passes)\n",
                 acc.id.scene.c_str(), acc.width, acc.height, o.parts.size(),
+                o.parts.size() == 1 ? "" : "s",
                 ranges_to_string(acc.ranges).c_str(), (unsigned long long)acc.samples(),
                 (unsigned long long)acc.passes);
     return 0;
