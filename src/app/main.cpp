@@ -74,6 +74,8 @@ int main(int argc, char** argv) {
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);
   if (const std::string why = check_outputs(cl, scene.settings); !why.empty())
     return usage_error(why);
+  if (!cl.headless && (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty()))
+    return usage_error("--samples, --resume and --out-sum need --headless");
   try {
     return cl.headless ? headless(cl, scene) : viewer(cl, scene);
   } catch (const std::exception& e) {
