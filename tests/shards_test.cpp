@@ -94,8 +94,9 @@ TEST_F(Shards, MergedRangesEqualTheRenderWithThoseRangesAsPassesBitForBit) {
     render(s + " --samples 3:6 --out-sum " + f("b.exr") + " --out-float " + f("b.pfm"));
     // The second part holds other samples than the first (its own indices).
     EXPECT_NE(bytes(f("a.pfm")), bytes(f("b.pfm")));
-    // Given out of order: the merge folds in range order.
-    const Result m = run("merge " + f("b.exr") + " " + f("a.exr") + " --out " + f("m.pfm") +
+    // Given out of order: the merge folds in range order. (--out takes one
+    // value each time, so the parts may follow it.)
+    const Result m = run("merge --out " + f("m.pfm") + " " + f("b.exr") + " " + f("a.exr") +
                          " --out " + f("m.exr") + " --out " + f("m.png"));
     ASSERT_EQ(m.code, 0) << m.output;
     EXPECT_NE(m.output.find("samples 0:6"), std::string::npos) << m.output;

@@ -57,13 +57,15 @@ void write(const MergeOptions& o, const Accumulation& acc) {
 }  // namespace
 
 int run_merge(int argc, char** argv) {
-  CLI::App app{"whisker merge: sum accumulation files (sample-range parts) into one, exactly"};
+  CLI::App app{"Sums accumulation files (sample-range parts of one render) into one, exactly",
+               "whisker merge"};
   MergeOptions o;
   app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings")
       ->required();
   app.add_option("--out", o.outs,
                  "Output: .exr (accumulation file, mergeable again), .pfm (mean radiance), "
-                 ".png (the report's mapping); repeatable");
+                 ".png (the report's mapping); repeatable")
+      ->allow_extra_args(false);
   app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
   app.add_flag("--partial", o.partial,
                "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
