@@ -81,6 +81,10 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Headless: continue the render in this accumulation file (.exr from --out-sum)");
   app.add_option("--out-sum", o.out_sum,
                  "Headless: accumulation file (.exr): exact sums, sample range, scene and settings");
+  app.add_option("--checkpoint", o.checkpoint,
+                 "Headless: also write --out-sum while rendering, at most every SECONDS (0: every "
+                 "pass), to --resume a killed render")
+      ->check(CLI::Range(0.0, 1e9));
 }
 
 }  // namespace

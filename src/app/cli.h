@@ -31,6 +31,7 @@ struct CommandLine {
   std::string samples;  // "A:B"
   std::string resume;   // an accumulation file to continue
   std::string out_sum;  // accumulation file output (.exr)
+  double checkpoint = -1;  // seconds between --out-sum updates while rendering (< 0: off)
 };
 
 // Parses argv into `out`. Returns an exit code when the run ends here (--help,

@@ -54,6 +54,7 @@ int run_headless(const HeadlessOptions& o) {
   renderer.set_publish_exact(!o.out_sum.empty());
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
+  Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);
 
   const bool tty = o.progress && ::isatty(2);
   const auto t0 = std::chrono::steady_clock::now();
@@ -79,6 +80,7 @@ int run_headless(const HeadlessOptions& o) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   renderer.stop();
+  checkpoints.stop();
   if (shown) std::fprintf(stderr, "\r%*s\r", 70, "");
 
   return write_outputs(o, scene, snap, renderer.threads());

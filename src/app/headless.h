@@ -20,6 +20,7 @@ struct HeadlessOptions {
   // = 0, the frames x spp samples of a render from sample 0.
   ShardPlan plan;
   std::string out_sum;  // accumulation file (.exr)
+  double checkpoint = -1;  // seconds between --out-sum writes while rendering (< 0: off)
 };
 
 // Renders and writes the outputs; returns the process exit code.

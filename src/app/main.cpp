@@ -24,6 +24,7 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
   h.out_sum = cl.out_sum;
+  h.checkpoint = cl.checkpoint;
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   return run_headless(h);
 }
@@ -74,8 +75,9 @@ int main(int argc, char** argv) {
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);
   if (const std::string why = check_outputs(cl, scene.settings); !why.empty())
     return usage_error(why);
-  if (!cl.headless && (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty()))
-    return usage_error("--samples, --resume and --out-sum need --headless");
+  if (!cl.headless &&
+      (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0))
+    return usage_error("--samples, --resume, --out-sum and --checkpoint need --headless");
   try {
     return cl.headless ? headless(cl, scene) : viewer(cl, scene);
   } catch (const std::exception& e) {

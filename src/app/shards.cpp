@@ -1,5 +1,8 @@
 #include "app/shards.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 
@@ -40,10 +43,13 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   plan.id = render_identity(scene);
   const std::uint64_t spp = std::uint64_t(scene.settings.spp);
   const std::uint64_t frames = std::uint64_t(cl.frames > 0 ? cl.frames : 1);
-  if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty()) && !cl.headless)
-    return "--samples, --resume and --out-sum need --headless";
+  if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0) &&
+      !cl.headless)
+    return "--samples, --resume, --out-sum and --checkpoint need --headless";
   if (!cl.out_sum.empty() && std::filesystem::path(cl.out_sum).extension() != ".exr")
     return "--out-sum " + cl.out_sum + ": must end in .exr";
+  if (cl.checkpoint >= 0 && cl.out_sum.empty())
+    return "--checkpoint needs --out-sum (the file it keeps up to date)";
   if ((!cl.out_sum.empty() || !cl.resume.empty()) && !have_exr())
     return "--out-sum and --resume need OpenEXR, and this build has none";
   SampleRange range{0, frames * spp};
@@ -79,6 +85,42 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   plan.start.resume = std::move(acc);
   plan.target = range.end - range.begin;
   return {};
+}
+
+Checkpointer::Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t generation,
+                           std::string path, double seconds, const ShardPlan& plan)
+    : renderer_(renderer), generation_(generation), path_(std::move(path)), seconds_(seconds),
+      plan_(plan) {
+  if (seconds_ >= 0 && !path_.empty()) thread_ = std::thread([this] { run(); });
+}
+
+void Checkpointer::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void Checkpointer::run() {
+  // Poll the published passes; a pass is written whole or not at all
+  // (write_accumulation renames a finished temporary file into place).
+  const auto period = std::chrono::duration<double>(std::max(seconds_, 0.05));
+  Snapshot snap;
+  std::uint64_t written = 0;  // samples in the file
+  std::unique_lock lock(mutex_);
+  while (!cv_.wait_for(lock, period, [this] { return stopping_; })) {
+    if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.preview ||
+        snap.done || snap.spp <= written || snap.exact_sum.empty())
+      continue;
+    try {
+      write_accumulation(path_, accumulation_of(snap, plan_.start.first_sample, plan_.id));
+      written = snap.spp;
+    } catch (const ImageError& e) {
+      std::fprintf(stderr, "whisker: warning: checkpoint: %s\n", e.what());
+    }
+  }
 }
 
 }  // namespace whisker

@@ -2,9 +2,12 @@
 // a headless render draws and what its film starts from (docs/SHARDS.md).
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "app/cli.h"
 #include "render/progressive.h"
@@ -25,5 +28,32 @@ struct ShardPlan {
 // reading the resumed file; returns what is wrong ("" if nothing), a line
 // naming the option or file and the field.
 std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan);
+
+// --checkpoint: while a headless render runs, writes its latest finished pass
+// to the --out-sum file at most every `seconds` (0: after every pass), so a
+// render that is killed resumes from there with --resume. A thread of its
+// own; stop() before the final outputs are written.
+class Checkpointer {
+ public:
+  Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t generation, std::string path,
+               double seconds, const ShardPlan& plan);
+  ~Checkpointer() { stop(); }
+  Checkpointer(const Checkpointer&) = delete;
+  Checkpointer& operator=(const Checkpointer&) = delete;
+  void stop();
+
+ private:
+  void run();
+
+  const ProgressiveRenderer& renderer_;
+  std::uint64_t generation_;
+  std::string path_;
+  double seconds_;
+  const ShardPlan& plan_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
 
 }  // namespace whisker
