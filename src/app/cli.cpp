@@ -75,6 +75,16 @@ void add_app_options(CLI::App& app, CommandLine& o) {
       ->check(CLI::Range(0, 1 << 24));
   app.add_option("--edit-light", o.edit_light, "Viewer script: new light position x,y,z");
   app.add_flag("--quiet", o.quiet, "No progress line");
+  app.add_option("--samples", o.samples,
+                 "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
+  app.add_option("--resume", o.resume,
+                 "Headless: continue the render in this accumulation file (.exr from --out-sum)");
+  app.add_option("--out-sum", o.out_sum,
+                 "Headless: accumulation file (.exr): exact sums, sample range, scene and settings");
+  app.add_option("--checkpoint", o.checkpoint,
+                 "Headless: also write --out-sum while rendering, at most every SECONDS (0: every "
+                 "pass), to --resume a killed render")
+      ->check(CLI::Range(0.0, 1e9));
 }
 
 }  // namespace
@@ -128,7 +138,7 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
            " is more than 2^30 samples per pixel";
   for (const auto& [path, option] :
        {std::pair{cl.out_png, "--out"}, {cl.out_float, "--out-float"},
-        {cl.stats_json, "--stats"}, {cl.screenshot, "--screenshot"}}) {
+        {cl.stats_json, "--stats"}, {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}}) {
     if (auto err = check_output(path, option); !err.empty()) return err;
   }
   if (!cl.out_png.empty() && fs::path(cl.out_png).extension() != ".png")
@@ -141,8 +151,9 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
-  if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty())
-    return "--headless needs at least one of --out, --out-float, --stats";
+  if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
+      cl.out_sum.empty())
+    return "--headless needs at least one of --out, --out-float, --stats, --out-sum";
   return {};
 }
 

@@ -27,6 +27,11 @@ struct CommandLine {
   int edit_after = -1;
   std::string edit_light;
   bool quiet = false;
+  // Sample-range shards and resuming (docs/SHARDS.md).
+  std::string samples;  // "A:B"
+  std::string resume;   // an accumulation file to continue
+  std::string out_sum;  // accumulation file output (.exr)
+  double checkpoint = -1;  // seconds between --out-sum updates while rendering (< 0: off)
 };
 
 // Parses argv into `out`. Returns an exit code when the run ends here (--help,

@@ -6,20 +6,55 @@
 
 #include <unistd.h>
 
+#include "render/accumulation_io.h"
 #include "render/image_io.h"
 #include "render/progressive.h"
 #include "render/stats_io.h"
 
 namespace whisker {
 
+namespace {
+
+// The images, the summary line and the stats of a finished render.
+int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, int threads) {
+  const double secs = snap.seconds;
+  const double pixels = double(snap.width) * snap.height;
+  const double paths = pixels * double(snap.spp);
+  const Image img = mean_image(snap);
+  if (!o.out_png.empty()) write_png(o.out_png, img);
+  if (!o.out_float.empty()) write_float_image(o.out_float, img);
+  if (!o.out_sum.empty())
+    write_accumulation(o.out_sum, accumulation_of(snap, o.plan.start.first_sample, o.plan.id));
+
+  std::printf(
+      "%s %dx%d: %llu spp in %.3f s, %.3g paths/s, %.3g rays/s, %llu NaN/Inf dropped, %d threads",
+      scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
+      secs > 0 ? paths / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
+      (unsigned long long)snap.nan_count, threads);
+  if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
+  if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
+  if (!o.out_sum.empty()) std::printf(" -> %s", o.out_sum.c_str());
+  std::printf("\n");
+
+  if (!o.stats_json.empty())
+    write_stats_json(o.stats_json, {scene.name, &snap, threads, &scene.settings, {}});
+  return 0;
+}
+
+}  // namespace
+
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
-  const std::uint64_t target = std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
+  const std::uint64_t target =
+      o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
   scene.settings.target_spp = int(target);
+  if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 
   ProgressiveRenderer renderer(o.threads);
-  const auto gen = renderer.set_scene(scene);
+  renderer.set_publish_exact(!o.out_sum.empty());
+  const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
+  Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);
 
   const bool tty = o.progress && ::isatty(2);
   const auto t0 = std::chrono::steady_clock::now();
@@ -45,27 +80,10 @@ int run_headless(const HeadlessOptions& o) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
   }
   renderer.stop();
+  checkpoints.stop();
   if (shown) std::fprintf(stderr, "\r%*s\r", 70, "");
 
-  const double secs = snap.seconds;
-  const double pixels = double(snap.width) * snap.height;
-  const double paths = pixels * double(snap.spp);
-  const Image img = mean_image(snap);
-  if (!o.out_png.empty()) write_png(o.out_png, img);
-  if (!o.out_float.empty()) write_float_image(o.out_float, img);
-
-  std::printf(
-      "%s %dx%d: %llu spp in %.3f s, %.3g paths/s, %.3g rays/s, %llu NaN/Inf dropped, %d threads",
-      scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
-      secs > 0 ? paths / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
-      (unsigned long long)snap.nan_count, renderer.threads());
-  if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
-  if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
-  std::printf("\n");
-
-  if (!o.stats_json.empty())
-    write_stats_json(o.stats_json, {scene.name, &snap, renderer.threads(), &scene.settings, {}});
-  return 0;
+  return write_outputs(o, scene, snap, renderer.threads());
 }
 
 }  // namespace whisker

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "app/shards.h"
 #include "scene/scene.h"
 
 namespace whisker {
@@ -15,6 +16,11 @@ struct HeadlessOptions {
   std::string out_float;  // .pfm or .exr
   std::string stats_json;
   bool progress = true;   // a progress line on stderr when it is a terminal
+  // Which samples, from what start (--samples, --resume); unset: plan.target
+  // = 0, the frames x spp samples of a render from sample 0.
+  ShardPlan plan;
+  std::string out_sum;  // accumulation file (.exr)
+  double checkpoint = -1;  // seconds between --out-sum writes while rendering (< 0: off)
 };
 
 // Renders and writes the outputs; returns the process exit code.

@@ -4,6 +4,7 @@
 
 #include "app/cli.h"
 #include "app/headless.h"
+#include "app/merge.h"
 #include "scene/scene_io.h"
 #ifdef WHISKER_HAVE_VIEWER
 #include "viewer/viewer.h"
@@ -22,6 +23,9 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_float = cl.out_float;
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
+  h.out_sum = cl.out_sum;
+  h.checkpoint = cl.checkpoint;
+  if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   return run_headless(h);
 }
 
@@ -58,6 +62,7 @@ int viewer(const CommandLine& cl, const Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "merge") return run_merge(argc - 1, argv + 1);
   CommandLine cl;
   if (const auto code = parse_command_line(argc, argv, cl)) return *code;
   Scene scene;
@@ -70,6 +75,9 @@ int main(int argc, char** argv) {
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);
   if (const std::string why = check_outputs(cl, scene.settings); !why.empty())
     return usage_error(why);
+  if (!cl.headless &&
+      (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0))
+    return usage_error("--samples, --resume, --out-sum and --checkpoint need --headless");
   try {
     return cl.headless ? headless(cl, scene) : viewer(cl, scene);
   } catch (const std::exception& e) {

@@ -63,4 +63,14 @@ void Film::publish(Snapshot& s, bool preview) const {
   }
 }
 
+void Film::publish_exact(Snapshot& s) const {
+  s.exact_sum = acc_;
+  s.exact_sum_sq = acc_sq_;
+}
+
+void Film::load(const std::vector<double>& sum, const std::vector<double>& sum_sq) {
+  if (sum.size() == acc_.size()) acc_ = sum;
+  if (sum_sq.size() == acc_sq_.size()) acc_sq_ = sum_sq;
+}
+
 }  // namespace whisker

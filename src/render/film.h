@@ -45,6 +45,10 @@ struct Snapshot {
   bool preview = false;
   std::size_t triangles = 0;  // the scene's geometry, for display
   std::size_t bvh_nodes = 0;
+  // The film's double sums as they are, when the renderer is asked to
+  // publish them (ProgressiveRenderer::set_publish_exact): for accumulation
+  // files, which must merge and resume exactly. Empty otherwise.
+  std::vector<double> exact_sum, exact_sum_sq;
 
   // Mean radiance of pixel (x, y), channel c.
   float mean(int x, int y, int c) const {
@@ -96,6 +100,10 @@ class Film {
 
   // Copies the sums (or the preview, shown as one sample) into `s`.
   void publish(Snapshot& s, bool preview) const;
+  // Copies the double sums as they are into s.exact_sum and s.exact_sum_sq.
+  void publish_exact(Snapshot& s) const;
+  // Starts from these sums (a resumed render); sizes must match the film's.
+  void load(const std::vector<double>& sum, const std::vector<double>& sum_sq);
 
  private:
   int width_ = 0, height_ = 0;

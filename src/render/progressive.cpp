@@ -38,6 +38,7 @@ struct ProgressiveRenderer::Job {
   Film film;
   bool preview_pass = false;
   std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
+  std::uint64_t first_sample = 0;  // sample index of the generation's first sample
   double seconds = 0.0;
 
   // this pass
@@ -56,8 +57,13 @@ ProgressiveRenderer::ProgressiveRenderer(int threads) {
 ProgressiveRenderer::~ProgressiveRenderer() { stop(); }
 
 std::uint64_t ProgressiveRenderer::set_scene(const Scene& scene) {
+  return set_scene(scene, RenderStart{});
+}
+
+std::uint64_t ProgressiveRenderer::set_scene(const Scene& scene, RenderStart start) {
   std::lock_guard lock(pending_mutex_);
   pending_scene_ = scene;
+  pending_start_ = std::move(start);
   ++pending_generation_;
   pending_cv_.notify_all();
   return pending_generation_;
@@ -205,6 +211,7 @@ bool ProgressiveRenderer::begin_pass() {
     // Adopt the new generation: everything accumulated so far is thrown away.
     job.scene = pending_scene_;
     job.generation = pending_generation_;
+    const RenderStart start = pending_start_;
     lock.unlock();
     // Spheres and materials are rebuilt (cheap); the BVH is reused when the
     // meshes and the accel kind are the same.
@@ -218,6 +225,7 @@ bool ProgressiveRenderer::begin_pass() {
     job.seconds = 0.0;
     job.preview_pass = preview_enabled_;
     job.film.reset(job.width, job.height, job.preview_pass);
+    adopt_start(start);
   } else {
     lock.unlock();
   }
@@ -226,7 +234,7 @@ bool ProgressiveRenderer::begin_pass() {
   if (s.target_spp > 0)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   job.pass_spp = spp;
-  job.sample_base = job.spp_done;
+  job.sample_base = job.first_sample + job.spp_done;
   job.next_tile = 0;
   job.pass_nans = 0;
   job.pass_rays = 0;
@@ -240,6 +248,21 @@ bool ProgressiveRenderer::begin_pass() {
                            job.pass_start.time_since_epoch()).count();
   progress_running_ = true;
   return true;
+}
+
+void ProgressiveRenderer::adopt_start(const RenderStart& start) {
+  Job& job = *job_;
+  job.first_sample = start.first_sample;
+  if (!start.resume) return;
+  // The resumed part's sums, counters and samples, as if its passes had
+  // just run here: the next pass adds onto them exactly as it would have.
+  const Accumulation& a = *start.resume;
+  job.film.load(a.sum, a.sum_sq);
+  job.spp_done = a.samples();
+  job.passes = a.passes;
+  job.nan_count = a.nan_count;
+  job.rays = a.rays;
+  job.seconds = a.seconds;
 }
 
 void ProgressiveRenderer::run_tiles() {
@@ -310,6 +333,7 @@ void ProgressiveRenderer::end_pass() {
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
   job.film.publish(s, preview);
+  if (publish_exact_ && !preview) job.film.publish_exact(s);
   s.spp = preview ? 1 : job.spp_done;  // the preview shows as one sample
   s.generation = job.generation;
   s.version += 1;

@@ -11,12 +11,21 @@
 #include <thread>
 #include <vector>
 
+#include "render/accumulation.h"
 #include "render/film.h"
 #include "scene/scene.h"
 
 namespace whisker {
 
 class World;
+
+// Where a generation starts: its first sample index (a sample range's start)
+// and, to resume, the accumulation it continues (one contiguous range ending
+// where this generation's samples begin).
+struct RenderStart {
+  std::uint64_t first_sample = 0;
+  std::shared_ptr<const Accumulation> resume;
+};
 
 class ProgressiveRenderer {
  public:
@@ -30,6 +39,8 @@ class ProgressiveRenderer {
   // cleared and samples of older generations are thrown away. Returns the new
   // generation number. Thread-safe.
   std::uint64_t set_scene(const Scene& scene);
+  // Same, starting at `start` instead of sample 0 with an empty film.
+  std::uint64_t set_scene(const Scene& scene, RenderStart start);
   // Same, for settings-only edits. (A scene whose meshes are the same
   // objects, and the same accel kind, reuses the BVH either way.)
   std::uint64_t set_settings(const RenderSettings& settings);
@@ -63,6 +74,9 @@ class ProgressiveRenderer {
   // at the next start().
   void set_low_priority(bool on) { low_priority_ = on; }
   int threads() const { return threads_; }
+  // Publish the film's double sums too (Snapshot::exact_sum), for
+  // accumulation files. Off by default (a copy per pass).
+  void set_publish_exact(bool on) { publish_exact_ = on; }
 
   // Copies the latest published pass into `out` if its version differs from
   // out.version; returns whether it copied. Never waits for a pass.
@@ -81,6 +95,7 @@ class ProgressiveRenderer {
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
   void run_tiles();
   void end_pass();     // thread 0 only: merge and publish
+  void adopt_start(const RenderStart& start);  // thread 0, at adoption
 
   int threads_ = 1;
   std::vector<std::thread> pool_;
@@ -89,10 +104,12 @@ class ProgressiveRenderer {
   std::atomic<bool> running_{false};
   std::atomic<bool> preview_enabled_{false};
   bool low_priority_ = false;
+  std::atomic<bool> publish_exact_{false};
   // pending state, guarded by pending_mutex_
   mutable std::mutex pending_mutex_;
   std::condition_variable pending_cv_;
   Scene pending_scene_;
+  RenderStart pending_start_;
   // Written under pending_mutex_; atomic so that workers can check them
   // between tiles without taking the lock.
   std::atomic<std::uint64_t> pending_generation_{0};

@@ -1,0 +1,101 @@
+#include "app/merge.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "app/cli.h"
+#include "render/accumulation_io.h"
+#include "render/image_io.h"
+#include "render/stats_io.h"
+
+namespace whisker {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> parts;
+  std::vector<std::string> outs;
+  std::string stats_json;
+  bool partial = false;
+};
+
+std::string check_outs(const MergeOptions& o) {
+  if (o.outs.empty() && o.stats_json.empty())
+    return "merge needs at least one --out (.exr, .pfm or .png) or --stats";
+  for (const std::string& out : o.outs) {
+    const auto ext = fs::path(out).extension();
+    if (ext != ".exr" && ext != ".pfm" && ext != ".png")
+      return "merge --out " + out + ": must end in .exr (accumulation), .pfm or .png";
+    if (ext == ".exr" && !have_exr()) return "merge --out " + out + ": this build has no OpenEXR";
+    for (const std::string& part : o.parts) {
+      std::error_code ec;
+      if (fs::equivalent(out, part, ec))
+        return "merge --out " + out + ": is one of the parts; write the merge elsewhere";
+    }
+  }
+  return {};
+}
+
+void write(const MergeOptions& o, const Accumulation& acc) {
+  const Snapshot snap = snapshot_of(acc);
+  const Image img = mean_image(snap);
+  for (const std::string& out : o.outs) {
+    const auto ext = fs::path(out).extension();
+    if (ext == ".exr") write_accumulation(out, acc);
+    else if (ext == ".pfm") write_pfm(out, img);
+    else write_png(out, img);
+  }
+  if (!o.stats_json.empty()) write_stats_json(o.stats_json, {acc.id.scene, &snap, 0, nullptr, {}});
+}
+
+}  // namespace
+
+int run_merge(int argc, char** argv) {
+  CLI::App app{"Sums accumulation files (sample-range parts of one render) into one, exactly",
+               "whisker merge"};
+  MergeOptions o;
+  app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings")
+      ->required();
+  app.add_option("--out", o.outs,
+                 "Output: .exr (accumulation file, mergeable again), .pfm (mean radiance), "
+                 ".png (the report's mapping); repeatable")
+      ->allow_extra_args(false);
+  app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
+  app.add_flag("--partial", o.partial,
+               "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kUsageError;
+  }
+  if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);
+  try {
+    std::vector<NamedAccumulation> parts;
+    for (const std::string& p : o.parts) parts.push_back({p, read_accumulation(p)});
+    const Accumulation acc = merge_accumulations(std::move(parts));
+    if (const auto gaps = missing_ranges(acc.ranges); !gaps.empty()) {
+      const std::string msg = "merge: samples " + ranges_to_string(gaps) +
+                              " are missing (the parts hold " + ranges_to_string(acc.ranges) + ")";
+      if (!o.partial) return usage_error(msg + "; render them, or pass --partial");
+      std::fprintf(stderr, "whisker: warning: %s; writing the partial merge\n", msg.c_str());
+    }
+    write(o, acc);
+    std::printf("%s %dx%d: merged %zu part%s, samples %s (%llu spp, %llu passes)\n",
+                acc.id.scene.c_str(), acc.width, acc.height, o.parts.size(),
+                o.parts.size() == 1 ? "" : "s",
+                ranges_to_string(acc.ranges).c_str(), (unsigned long long)acc.samples(),
+                (unsigned long long)acc.passes);
+    return 0;
+  } catch (const std::exception& e) {
+    return usage_error(e.what());
+  }
+}
+
+}  // namespace whisker

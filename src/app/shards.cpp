@@ -1,0 +1,126 @@
+#include "app/shards.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "render/accumulation_io.h"
+#include "render/image_io.h"
+
+namespace whisker {
+
+namespace {
+
+// The sample index limit of a full render (check_outputs): 2^30.
+constexpr std::uint64_t kMaxSample = 1ull << 30;
+
+std::string check_resume(const std::string& path, const Scene& scene, const RenderIdentity& id,
+                         Accumulation& acc) {
+  try {
+    acc = read_accumulation(path);
+  } catch (const AccumulationError& e) {
+    return std::string("--resume ") + e.what();
+  }
+  Accumulation here;
+  here.width = scene.camera.width;
+  here.height = scene.camera.height;
+  here.id = id;
+  if (const std::string why = identity_mismatch(acc, here); !why.empty())
+    return "--resume " + path + ": rendered from other input than this render; differs in " + why +
+           " (file vs command line)";
+  if (acc.ranges.size() != 1)
+    return "--resume " + path + ": holds samples " + ranges_to_string(acc.ranges) +
+           ", not one range; resume one contiguous part";
+  return {};
+}
+
+}  // namespace
+
+std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan) {
+  plan = {};
+  plan.id = render_identity(scene);
+  const std::uint64_t spp = std::uint64_t(scene.settings.spp);
+  const std::uint64_t frames = std::uint64_t(cl.frames > 0 ? cl.frames : 1);
+  if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0) &&
+      !cl.headless)
+    return "--samples, --resume, --out-sum and --checkpoint need --headless";
+  if (!cl.out_sum.empty() && std::filesystem::path(cl.out_sum).extension() != ".exr")
+    return "--out-sum " + cl.out_sum + ": must end in .exr";
+  if (cl.checkpoint >= 0 && cl.out_sum.empty())
+    return "--checkpoint needs --out-sum (the file it keeps up to date)";
+  if ((!cl.out_sum.empty() || !cl.resume.empty()) && !have_exr())
+    return "--out-sum and --resume need OpenEXR, and this build has none";
+  SampleRange range{0, frames * spp};
+  if (!cl.samples.empty()) {
+    if (cl.frames > 0) return "--samples A:B sets the passes (of --spp samples); drop --frames";
+    if (!parse_sample_range(cl.samples, range))
+      return "--samples " + cl.samples + ": expected A:B with whole numbers A < B, e.g. 0:512";
+    if (range.end > kMaxSample)
+      return "--samples " + cl.samples + ": sample indices must stay below 2^30";
+  }
+  if (cl.resume.empty()) {
+    plan.start.first_sample = range.begin;
+    plan.target = range.end - range.begin;
+    return {};
+  }
+  auto acc = std::make_shared<Accumulation>();
+  if (std::string why = check_resume(cl.resume, scene, plan.id, *acc); !why.empty()) return why;
+  const SampleRange done = acc->ranges.front();
+  if (cl.samples.empty()) {
+    // --frames N: the render of N passes from the part's first sample.
+    range = {done.begin, done.begin + frames * spp};
+  } else if (range.begin != done.end) {
+    return "--samples " + cl.samples + ": " + cl.resume + " holds samples " +
+           ranges_to_string({done}) + ", so the resumed range must start at " +
+           std::to_string(done.end);
+  } else {
+    range.begin = done.begin;
+  }
+  if (range.end < done.end)
+    return "--resume " + cl.resume + ": already holds samples " + ranges_to_string({done}) +
+           ", past the " + std::to_string(range.end - range.begin) + " asked for (--frames x --spp)";
+  plan.start.first_sample = done.begin;
+  plan.start.resume = std::move(acc);
+  plan.target = range.end - range.begin;
+  return {};
+}
+
+Checkpointer::Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t generation,
+                           std::string path, double seconds, const ShardPlan& plan)
+    : renderer_(renderer), generation_(generation), path_(std::move(path)), seconds_(seconds),
+      plan_(plan) {
+  if (seconds_ >= 0 && !path_.empty()) thread_ = std::thread([this] { run(); });
+}
+
+void Checkpointer::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void Checkpointer::run() {
+  // Poll the published passes; a pass is written whole or not at all
+  // (write_accumulation renames a finished temporary file into place).
+  const auto period = std::chrono::duration<double>(std::max(seconds_, 0.05));
+  Snapshot snap;
+  std::uint64_t written = 0;  // samples in the file
+  std::unique_lock lock(mutex_);
+  while (!cv_.wait_for(lock, period, [this] { return stopping_; })) {
+    if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.preview ||
+        snap.done || snap.spp <= written || snap.exact_sum.empty())
+      continue;
+    try {
+      write_accumulation(path_, accumulation_of(snap, plan_.start.first_sample, plan_.id));
+      written = snap.spp;
+    } catch (const ImageError& e) {
+      std::fprintf(stderr, "whisker: warning: checkpoint: %s\n", e.what());
+    }
+  }
+}
+
+}  // namespace whisker

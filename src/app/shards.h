@@ -1,0 +1,59 @@
+// Sample-range shards and resumed renders on the command line: which samples
+// a headless render draws and what its film starts from (docs/SHARDS.md).
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "app/cli.h"
+#include "render/progressive.h"
+
+namespace whisker {
+
+// What a headless render does: start, and how many samples per pixel its
+// film holds at the end (counting a resumed part's).
+struct ShardPlan {
+  RenderStart start;
+  std::uint64_t target = 0;
+  RenderIdentity id;
+  // A resumed part that already holds every sample asked for: nothing to render.
+  bool complete() const { return start.resume && start.resume->samples() >= target; }
+};
+
+// Checks --samples, --resume and --out-sum against each other and the scene,
+// reading the resumed file; returns what is wrong ("" if nothing), a line
+// naming the option or file and the field.
+std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan);
+
+// --checkpoint: while a headless render runs, writes its latest finished pass
+// to the --out-sum file at most every `seconds` (0: after every pass), so a
+// render that is killed resumes from there with --resume. A thread of its
+// own; stop() before the final outputs are written.
+class Checkpointer {
+ public:
+  Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t generation, std::string path,
+               double seconds, const ShardPlan& plan);
+  ~Checkpointer() { stop(); }
+  Checkpointer(const Checkpointer&) = delete;
+  Checkpointer& operator=(const Checkpointer&) = delete;
+  void stop();
+
+ private:
+  void run();
+
+  const ProgressiveRenderer& renderer_;
+  std::uint64_t generation_;
+  std::string path_;
+  double seconds_;
+  const ShardPlan& plan_;
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool stopping_ = false;
+  std::thread thread_;
+};
+
+}  // namespace whisker

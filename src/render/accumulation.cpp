@@ -1,0 +1,225 @@
+#include "render/accumulation.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "geometry/mesh.h"
+#include "scene/scene_io.h"
+#include "scene/settings_json.h"
+
+namespace whisker {
+
+using nlohmann::json;
+
+namespace {
+
+// FNV-1a, 64 bits (Fowler, Noll, Vo): a fingerprint, not a defence.
+struct Fnv1a {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  void add(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  }
+  template <class T>
+  void add_vector(const std::vector<T>& v) {
+    add(v.data(), v.size() * sizeof(T));
+  }
+  std::string hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+  }
+};
+
+bool parse_u64(std::string_view s, std::uint64_t& out) {
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && end == s.data() + s.size() && !s.empty();
+}
+
+}  // namespace
+
+bool parse_sample_range(const std::string& text, SampleRange& out) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) return false;
+  SampleRange r;
+  if (!parse_u64(std::string_view(text).substr(0, colon), r.begin) ||
+      !parse_u64(std::string_view(text).substr(colon + 1), r.end) || r.begin >= r.end)
+    return false;
+  out = r;
+  return true;
+}
+
+std::string ranges_to_string(const std::vector<SampleRange>& ranges) {
+  std::string s;
+  for (const SampleRange& r : ranges) {
+    if (!s.empty()) s += ',';
+    s += std::to_string(r.begin);
+    s += ':';
+    s += std::to_string(r.end);
+  }
+  return s;
+}
+
+bool parse_ranges(const std::string& text, std::vector<SampleRange>& out) {
+  std::vector<SampleRange> ranges;
+  std::istringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    SampleRange r;
+    if (!parse_sample_range(item, r)) return false;
+    if (!ranges.empty() && r.begin < ranges.back().end) return false;
+    ranges.push_back(r);
+  }
+  if (ranges.empty()) return false;
+  out = ranges;
+  return true;
+}
+
+RenderIdentity render_identity(const Scene& scene) {
+  RenderIdentity id;
+  id.scene = scene.name;
+  // The scene as its file would say it (camera, light, objects), without the
+  // settings, and the triangles its meshes loaded to.
+  json j = json::parse(scene_to_json(scene));
+  j.erase("settings");
+  Fnv1a h;
+  const std::string text = j.dump();
+  h.add(text.data(), text.size());
+  for (const MeshObject& m : scene.meshes) {
+    if (!m.mesh) continue;
+    h.add_vector(m.mesh->positions);
+    h.add_vector(m.mesh->triangles);
+    h.add_vector(m.mesh->normals);
+    h.add_vector(m.mesh->normal_idx);
+  }
+  id.scene_hash = h.hex();
+  json s = settings_to_json(scene.settings);
+  s.erase("spp");  // passes' size: the samples are the same whatever it is
+  s.erase("target_spp");
+  id.settings = s.dump();
+  return id;
+}
+
+std::uint64_t Accumulation::samples() const {
+  std::uint64_t n = 0;
+  for (const SampleRange& r : ranges) n += r.end - r.begin;
+  return n;
+}
+
+Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
+                             const RenderIdentity& id) {
+  Accumulation a;
+  a.width = snap.width;
+  a.height = snap.height;
+  a.sum = snap.exact_sum;
+  a.sum_sq = snap.exact_sum_sq;
+  if (snap.spp > 0) a.ranges = {{first_sample, first_sample + snap.spp}};
+  a.passes = snap.passes;
+  a.nan_count = snap.nan_count;
+  a.rays = snap.rays;
+  a.seconds = snap.seconds;
+  a.id = id;
+  return a;
+}
+
+Snapshot snapshot_of(const Accumulation& acc) {
+  Snapshot s;
+  s.width = acc.width;
+  s.height = acc.height;
+  s.sum.resize(acc.sum.size());
+  for (std::size_t k = 0; k < acc.sum.size(); ++k) s.sum[k] = float(acc.sum[k]);
+  s.sum_sq.resize(acc.sum_sq.size());
+  for (std::size_t k = 0; k < acc.sum_sq.size(); ++k) s.sum_sq[k] = float(acc.sum_sq[k]);
+  s.spp = acc.samples();
+  s.passes = acc.passes;
+  s.nan_count = acc.nan_count;
+  s.rays = acc.rays;
+  s.seconds = acc.seconds;
+  s.done = true;
+  s.exact_sum = acc.sum;
+  s.exact_sum_sq = acc.sum_sq;
+  return s;
+}
+
+std::string identity_mismatch(const Accumulation& a, const Accumulation& b) {
+  if (a.id.scene != b.id.scene) return "scene: \"" + a.id.scene + "\" vs \"" + b.id.scene + "\"";
+  if (a.id.scene_hash != b.id.scene_hash)
+    return "scene file or meshes (hash " + a.id.scene_hash + " vs " + b.id.scene_hash + ")";
+  if (a.width != b.width || a.height != b.height)
+    return "size: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+           std::to_string(b.width) + "x" + std::to_string(b.height);
+  if (a.id.settings == b.id.settings) return {};
+  // Name the first setting that differs.
+  const json sa = json::parse(a.id.settings, nullptr, false);
+  const json sb = json::parse(b.id.settings, nullptr, false);
+  if (sa.is_object() && sb.is_object())
+    for (const auto& [key, value] : sa.items())
+      if (!sb.contains(key) || sb[key] != value)
+        return "settings." + key + ": " + value.dump() + " vs " +
+               (sb.contains(key) ? sb[key].dump() : std::string("(missing)"));
+  return "settings: " + a.id.settings + " vs " + b.id.settings;
+}
+
+Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
+  if (parts.empty()) throw AccumulationError("nothing to merge");
+  for (std::size_t i = 1; i < parts.size(); ++i)
+    if (const std::string why = identity_mismatch(parts[0].acc, parts[i].acc); !why.empty())
+      throw AccumulationError(parts[0].name + " and " + parts[i].name + " differ in " + why);
+  // Every range with its file, in sample order; neighbours must not overlap.
+  struct Owned {
+    SampleRange r;
+    const std::string* name;
+  };
+  std::vector<Owned> all;
+  for (const auto& p : parts)
+    for (const SampleRange& r : p.acc.ranges) all.push_back({r, &p.name});
+  std::sort(all.begin(), all.end(), [](const Owned& x, const Owned& y) { return x.r.begin < y.r.begin; });
+  for (std::size_t i = 1; i < all.size(); ++i)
+    if (all[i].r.begin < all[i - 1].r.end)
+      throw AccumulationError("samples " + ranges_to_string({all[i - 1].r}) + " of " +
+                              *all[i - 1].name + " overlap samples " +
+                              ranges_to_string({all[i].r}) + " of " + *all[i].name);
+  // Fold in range order (the exactness rule in the header).
+  std::stable_sort(parts.begin(), parts.end(), [](const auto& x, const auto& y) {
+    return x.acc.ranges.front().begin < y.acc.ranges.front().begin;
+  });
+  Accumulation out;
+  const Accumulation& first = parts[0].acc;
+  out.width = first.width;
+  out.height = first.height;
+  out.id = first.id;
+  out.sum.assign(first.sum.size(), 0.0);
+  out.sum_sq.assign(first.sum_sq.size(), 0.0);
+  for (const auto& p : parts) {
+    for (std::size_t k = 0; k < out.sum.size(); ++k) out.sum[k] += p.acc.sum[k];
+    for (std::size_t k = 0; k < out.sum_sq.size(); ++k) out.sum_sq[k] += p.acc.sum_sq[k];
+    out.passes += p.acc.passes;
+    out.nan_count += p.acc.nan_count;
+    out.rays += p.acc.rays;
+    out.seconds += p.acc.seconds;
+  }
+  // The union of the ranges, touching ones joined.
+  for (const Owned& o : all) {
+    if (!out.ranges.empty() && out.ranges.back().end == o.r.begin)
+      out.ranges.back().end = o.r.end;
+    else
+      out.ranges.push_back(o.r);
+  }
+  return out;
+}
+
+std::vector<SampleRange> missing_ranges(const std::vector<SampleRange>& ranges) {
+  std::vector<SampleRange> gaps;
+  std::uint64_t at = 0;
+  for (const SampleRange& r : ranges) {
+    if (r.begin > at) gaps.push_back({at, r.begin});
+    at = std::max(at, r.end);
+  }
+  return gaps;
+}
+
+}  // namespace whisker

@@ -1,0 +1,86 @@
+// Accumulations: a render's un-normalised double sums with the sample ranges
+// they hold and what they were rendered from, so that parts rendered apart
+// (sample-range shards, an interrupted render) merge and resume exactly.
+//
+// Exactness rule: the film adds each pass's per-pixel sum (computed from zero
+// in sample order) into its double buffer. A merge folds the parts' sums in
+// the order of their ranges, starting from zero. So the merge of parts equals
+// bit for bit the single render whose passes are those parts: `0:512` and
+// `512:1024` rendered as one pass each merge to the render of `0:1024` in two
+// passes of 512. (A part that holds several passes is exact as the first
+// part; after it, use one pass per part.)
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/film.h"
+#include "scene/scene.h"
+
+namespace whisker {
+
+// Sample indices [begin, end) of every pixel.
+struct SampleRange {
+  std::uint64_t begin = 0, end = 0;
+  bool operator==(const SampleRange&) const = default;
+};
+
+// "0:512" -> {0, 512}; false if malformed or empty (begin >= end).
+bool parse_sample_range(const std::string& text, SampleRange& out);
+// "0:512,1024:2048".
+std::string ranges_to_string(const std::vector<SampleRange>& ranges);
+// Parses ranges_to_string's output; false if malformed.
+bool parse_ranges(const std::string& text, std::vector<SampleRange>& out);
+
+// What a render is of: parts merge only if all three agree.
+struct RenderIdentity {
+  std::string scene;       // the scene's name
+  std::string scene_hash;  // FNV-1a of the scene without settings, and its meshes
+  std::string settings;    // the settings as JSON, without spp and target_spp
+};
+// The identity of rendering `scene` (spp and target_spp only shape passes).
+RenderIdentity render_identity(const Scene& scene);
+
+struct Accumulation {
+  int width = 0, height = 0;
+  std::vector<double> sum;     // RGB sums, width*height*3, row 0 = top
+  std::vector<double> sum_sq;  // luminance sums of squares, width*height
+  std::vector<SampleRange> ranges;  // sorted and disjoint
+  std::uint64_t passes = 0, nan_count = 0, rays = 0;
+  double seconds = 0.0;  // render time, summed over parts
+  RenderIdentity id;
+
+  std::uint64_t samples() const;  // per pixel: the ranges' total length
+};
+
+struct AccumulationError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// The accumulation of a snapshot published with its exact sums, whose
+// samples start at `first_sample`.
+Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
+                             const RenderIdentity& id);
+// A snapshot of an accumulation (float sums as the film publishes them), so
+// mean_image and the stats see it as they see a render.
+Snapshot snapshot_of(const Accumulation& acc);
+
+// The first field in which a and b differ ("scene", "scene file or meshes",
+// "size", "settings.seed", ...) with both values, or "" if they agree.
+std::string identity_mismatch(const Accumulation& a, const Accumulation& b);
+
+// A part to merge and the file it came from (for messages).
+struct NamedAccumulation {
+  std::string name;
+  Accumulation acc;
+};
+// Folds the parts' sums in the order of their ranges. Throws
+// AccumulationError naming the files and the differing field, or the two
+// overlapping ranges.
+Accumulation merge_accumulations(std::vector<NamedAccumulation> parts);
+// The ranges missing from [0, last end): the gaps between `ranges`.
+std::vector<SampleRange> missing_ranges(const std::vector<SampleRange>& ranges);
+
+}  // namespace whisker

@@ -1,0 +1,238 @@
+// Sample-range shards, accumulation files, merge and resume: the whisker
+// binary end to end, and the accumulation file format on its own. The
+// exactness claims are checked bit for bit: output files byte for byte, sums
+// by their bit patterns.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "render/accumulation_io.h"
+
+namespace fs = std::filesystem;
+using namespace whisker;
+
+namespace {
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(WHISKER_BIN) + " " + args + " 2>&1";
+  Result r{-1, {}};
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+// The indirect room at 96x96 with Fresnel glass and anti-aliasing on, so the
+// shards go through pixel jitter, splitting (4,4 branches per sample, whose
+// Sobol indices are i*K+k of the global sample index i) and the Fresnel choice.
+class Shards : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() /
+          ("whisker-shards-" + std::to_string(::getpid()) + "-" +
+           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir);
+    std::ifstream in(fs::path(WHISKER_ASSETS_DIR) / "scenes" / "indirect.json");
+    nlohmann::json j = nlohmann::json::parse(in);
+    j["camera"]["width"] = 96;
+    j["camera"]["height"] = 96;
+    j["settings"]["fresnel"] = true;
+    j["settings"]["aa"] = true;
+    scene = dir / "room.json";
+    std::ofstream(scene) << j.dump(2);
+  }
+  void TearDown() override { fs::remove_all(dir); }
+
+  // whisker --headless on the small room with `args`; expects success.
+  void render(const std::string& args) {
+    const Result r = run("--headless --quiet --threads 2 --scene " + scene.string() + " " + args);
+    ASSERT_EQ(r.code, 0) << args << "\n" << r.output;
+  }
+  std::string f(const std::string& name) const { return (dir / name).string(); }
+
+  fs::path dir, scene;
+};
+
+}  // namespace
+
+TEST_F(Shards, MergedRangesEqualTheRenderWithThoseRangesAsPassesBitForBit) {
+  for (const char* sampler : {"sobol", "independent"}) {
+    SCOPED_TRACE(sampler);
+    const std::string s = std::string(" --sampler ") + sampler + " --spp 3";
+    // The reference: an ordinary render of 2 passes of 3 samples.
+    render(s + " --frames 2 --out-float " + f("frames.pfm"));
+    render(s + " --samples 0:6 --out-float " + f("full.pfm") + " --out-sum " + f("full.exr"));
+    render(s + " --samples 0:3 --out-sum " + f("a.exr") + " --out-float " + f("a.pfm"));
+    render(s + " --samples 3:6 --out-sum " + f("b.exr") + " --out-float " + f("b.pfm"));
+    // The second part holds other samples than the first (its own indices).
+    EXPECT_NE(bytes(f("a.pfm")), bytes(f("b.pfm")));
+    // Given out of order: the merge folds in range order. (--out takes one
+    // value each time, so the parts may follow it.)
+    const Result m = run("merge --out " + f("m.pfm") + " " + f("b.exr") + " " + f("a.exr") +
+                         " --out " + f("m.exr") + " --out " + f("m.png"));
+    ASSERT_EQ(m.code, 0) << m.output;
+    EXPECT_NE(m.output.find("samples 0:6"), std::string::npos) << m.output;
+    EXPECT_EQ(bytes(f("frames.pfm")), bytes(f("full.pfm")));
+    EXPECT_EQ(bytes(f("full.pfm")), bytes(f("m.pfm")));
+    const Accumulation full = read_accumulation(f("full.exr"));
+    const Accumulation merged = read_accumulation(f("m.exr"));
+    EXPECT_TRUE(same_bits(full.sum, merged.sum));
+    EXPECT_TRUE(same_bits(full.sum_sq, merged.sum_sq));
+    EXPECT_EQ(merged.ranges, (std::vector<SampleRange>{{0, 6}}));
+    EXPECT_EQ(merged.passes, 2u);
+    EXPECT_TRUE(fs::file_size(f("m.png")) > 0);
+  }
+}
+
+TEST_F(Shards, ResumeContinuesExactlyAndACompletePartIsNotRenderedAgain) {
+  render("--spp 2 --frames 3 --out-float " + f("full.pfm"));
+  render("--spp 2 --frames 1 --out-sum " + f("part.exr"));
+  render("--spp 2 --frames 3 --resume " + f("part.exr") + " --out-float " + f("resumed.pfm") +
+         " --out-sum " + f("resumed.exr"));
+  EXPECT_EQ(bytes(f("full.pfm")), bytes(f("resumed.pfm")));
+  EXPECT_EQ(read_accumulation(f("resumed.exr")).ranges, (std::vector<SampleRange>{{0, 6}}));
+  // --samples may name the continuation instead of --frames.
+  render("--spp 2 --samples 2:6 --resume " + f("part.exr") + " --out-float " + f("r2.pfm"));
+  EXPECT_EQ(bytes(f("full.pfm")), bytes(f("r2.pfm")));
+  // Resuming a part that already holds every sample writes it as it is.
+  render("--spp 2 --frames 3 --resume " + f("resumed.exr") + " --out-float " + f("again.pfm"));
+  EXPECT_EQ(bytes(f("full.pfm")), bytes(f("again.pfm")));
+}
+
+TEST_F(Shards, AKilledRenderResumesFromItsCheckpointExactly) {
+  render("--spp 1 --frames 120 --out-float " + f("full.pfm"));
+  // Killed (SIGKILL, no chance to clean up) once the first checkpoint is there.
+  const std::string cmd = std::string(WHISKER_BIN) + " --headless --quiet --threads 2 --scene " +
+                          scene.string() + " --spp 1 --frames 120 --checkpoint 0 --out-sum " +
+                          f("ck.exr") + " & pid=$!; while [ ! -f " + f("ck.exr") +
+                          " ]; do sleep 0.02; done; kill -9 $pid; wait $pid";
+  ASSERT_NE(std::system(cmd.c_str()), -1);
+  const Accumulation part = read_accumulation(f("ck.exr"));
+  ASSERT_EQ(part.ranges.size(), 1u);
+  EXPECT_EQ(part.ranges[0].begin, 0u);
+  EXPECT_LT(part.ranges[0].end, 120u) << "the render finished before it was killed";
+  EXPECT_EQ(part.passes, part.ranges[0].end);
+  render("--spp 1 --frames 120 --resume " + f("ck.exr") + " --out-float " + f("resumed.pfm"));
+  EXPECT_EQ(bytes(f("full.pfm")), bytes(f("resumed.pfm")));
+  const Result r = run("--headless --scene " + scene.string() + " --checkpoint 5 --out " + f("x.png"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.output.find("--checkpoint needs --out-sum"), std::string::npos) << r.output;
+}
+
+TEST_F(Shards, BadMergesAndResumesAreRefusedNamingFilesAndField) {
+  render("--spp 2 --samples 0:2 --out-sum " + f("a.exr"));
+  render("--spp 2 --samples 1:3 --out-sum " + f("over.exr"));
+  render("--spp 2 --samples 4:6 --out-sum " + f("later.exr"));
+  render("--spp 2 --samples 2:4 --seed 7 --out-sum " + f("seed7.exr"));
+  render("--spp 2 --samples 2:4 --light 0,30,40 --out-sum " + f("light.exr"));
+  struct Case {
+    std::string args, expect1, expect2;
+  };
+  const Case cases[] = {
+      {f("a.exr") + " " + f("seed7.exr"), "seed7.exr", "settings.seed: 0 vs 7"},
+      {f("a.exr") + " " + f("light.exr"), "light.exr", "scene file or meshes"},
+      {f("a.exr") + " " + f("over.exr"), "0:2 of " + f("a.exr"), "1:3 of " + f("over.exr")},
+      {f("a.exr") + " " + f("later.exr"), "samples 2:4 are missing", "--partial"},
+      {f("a.exr") + " " + f("nothere.exr"), "nothere.exr", "no such file"},
+      {f("a.exr") + " " + scene.string(), "room.json", "OpenEXR"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run("merge " + c.args + " --out " + f("m.pfm"));
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.expect1), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.expect2), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(f("m.pfm")));
+  }
+  // With --partial the merge is written and lists its ranges.
+  const Result p = run("merge " + f("a.exr") + " " + f("later.exr") + " --partial --out " + f("p.exr"));
+  EXPECT_EQ(p.code, 0) << p.output;
+  EXPECT_NE(p.output.find("warning"), std::string::npos) << p.output;
+  EXPECT_EQ(read_accumulation(f("p.exr")).ranges, (std::vector<SampleRange>{{0, 2}, {4, 6}}));
+  // A resume of other settings, of a gapped part, or past the part's end.
+  const std::pair<std::string, std::string> resumes[] = {
+      {"--spp 2 --frames 2 --seed 7 --resume " + f("a.exr"), "settings.seed"},
+      {"--spp 2 --frames 4 --resume " + f("p.exr"), "not one range"},
+      {"--spp 2 --samples 3:5 --resume " + f("a.exr"), "must start at 2"},
+      {"--spp 2 --samples 0:4 --frames 2", "drop --frames"},
+      {"--spp 2 --samples 4:2", "expected A:B"},
+      {"--spp 2 --samples 0:4 --out-sum " + f("x.pfm"), "must end in .exr"},
+  };
+  for (const auto& [args, expect] : resumes) {
+    const Result r = run("--headless --quiet --scene " + scene.string() + " --out-float " +
+                         f("r.pfm") + " " + args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
+  }
+}
+
+TEST(AccumulationFile, RoundTripKeepsEveryBitAndTheHeader) {
+  Accumulation a;
+  a.width = 3;
+  a.height = 2;
+  const double special[] = {0.0, 0.1, 1.0 / 3.0, 1e300, std::numeric_limits<double>::denorm_min(),
+                            std::nextafter(1.0, 2.0), 123456789.123456789, 2e-310};
+  for (int k = 0; k < 18; ++k) a.sum.push_back(special[k % 8] * (k + 1));
+  for (int k = 0; k < 6; ++k) a.sum_sq.push_back(special[(k + 3) % 8]);
+  a.ranges = {{0, 512}, {1024, 2048}};
+  a.passes = 3;
+  a.nan_count = 5;
+  a.rays = 1ull << 40;
+  a.seconds = 12.25;
+  a.id = {"room", "0123456789abcdef", R"({"seed":1})"};
+  const fs::path p = fs::temp_directory_path() / ("whisker-acc-" + std::to_string(::getpid()) + ".exr");
+  write_accumulation(p.string(), a);
+  const Accumulation b = read_accumulation(p.string());
+  fs::remove(p);
+  EXPECT_EQ(b.width, 3);
+  EXPECT_EQ(b.height, 2);
+  EXPECT_TRUE(same_bits(a.sum, b.sum));
+  EXPECT_TRUE(same_bits(a.sum_sq, b.sum_sq));
+  EXPECT_EQ(b.ranges, a.ranges);
+  EXPECT_EQ(b.passes, 3u);
+  EXPECT_EQ(b.nan_count, 5u);
+  EXPECT_EQ(b.rays, 1ull << 40);
+  EXPECT_EQ(b.seconds, 12.25);
+  EXPECT_EQ(b.id.scene, "room");
+  EXPECT_EQ(b.id.scene_hash, "0123456789abcdef");
+  EXPECT_EQ(b.id.settings, R"({"seed":1})");
+  EXPECT_EQ(b.samples(), 512u + 1024u);
+}
+
+TEST(AccumulationFile, MissingRangesAreTheGapsFromZero) {
+  EXPECT_TRUE(missing_ranges({{0, 4}, {4, 8}}).empty());
+  EXPECT_EQ(missing_ranges({{2, 4}, {6, 8}}), (std::vector<SampleRange>{{0, 2}, {4, 6}}));
+  SampleRange r;
+  EXPECT_TRUE(parse_sample_range("512:1024", r));
+  EXPECT_EQ(r, (SampleRange{512, 1024}));
+  for (const char* bad : {"", "5", "5:5", "6:5", "a:b", "1:2:3", "-1:4"})
+    EXPECT_FALSE(parse_sample_range(bad, r)) << bad;
+}
