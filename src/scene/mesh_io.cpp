@@ -55,6 +55,7 @@ struct Scan {
   long max_index = 0;            // largest positive vertex index seen
   std::size_t max_index_line = 0;
   std::vector<std::string> mtllibs;
+  std::vector<double> coords;  // the vertices' coordinates, read in double
 };
 
 // Checks every line: known keyword, finite numeric vertex coordinates, face
@@ -84,10 +85,11 @@ Scan scan(const std::string& path, const std::string& text) {
       for (int i = 0; i < 3; ++i) {
         const std::string tok(next_token(rest));
         char* e = nullptr;
-        const float x = tok.empty() ? 0.0f : std::strtof(tok.c_str(), &e);
+        const double x = tok.empty() ? 0.0 : std::strtod(tok.c_str(), &e);
         if (tok.empty() || e != tok.c_str() + tok.size())
           fail(path, line_no, "vertex needs three numbers");
-        if (!std::isfinite(x)) fail(path, line_no, "vertex coordinate is NaN or infinite");
+        if (!std::isfinite(float(x))) fail(path, line_no, "vertex coordinate is NaN or infinite");
+        s.coords.push_back(x);
       }
       ++s.vertices;
     } else if (key == "f") {
@@ -149,11 +151,15 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
 
   const std::size_t nv = attrib.vertices.size() / 3;
+  // tinyobjloader reads floats (a 1/16 grid at 1e6): the coordinates come
+  // from the scan's double reading instead, in the same order.
+  if (s.coords.size() != 3 * nv) fail(path, 0, "tinyobjloader read a different vertex count");
   mesh.positions.resize(nv);
+  mesh.exact.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    // One rounding per coordinate, whatever the compiler fuses.
-    vec3& p = mesh.positions[i];
-    for (int k = 0; k < 3; ++k) p[k] = std::fma(attrib.vertices[3 * i + k], scale, translate[k]);
+    glm::dvec3& x = mesh.exact[i];
+    for (int k = 0; k < 3; ++k) x[k] = s.coords[3 * i + k] * double(scale) + double(translate[k]);
+    mesh.positions[i] = vec3(x);
     if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
         !std::isfinite(mesh.positions[i].z))
       fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
