@@ -112,7 +112,8 @@ void SphereSet::redo_near(std::size_t k, unsigned near, const Ray& r, float tmax
 }
 
 // Of the lanes in `tie`, the one whose root (the one float found, solved in
-// double from the exact origin) is nearest.
+// double from the exact origin) is nearest; on an exact tie (a ray through a
+// seam of two walls, by symmetry) the sphere listed first in the scene.
 int SphereSet::closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) const {
   alignas(32) float ts[8];
   _mm256_store_ps(ts, t);
@@ -121,7 +122,7 @@ int SphereSet::closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) c
   for (; tie; tie &= tie - 1) {
     const int l = __builtin_ctz(tie);
     const double td = solve_sphere_t(spheres_[k + std::size_t(l)], r, ts[l]);
-    if (lane < 0 || td < nearest) {
+    if (lane < 0 || td < nearest || (td == nearest && id_[k + std::size_t(l)] < id_[k + std::size_t(lane)])) {
       nearest = td;
       lane = l;
     }
