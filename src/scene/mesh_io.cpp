@@ -174,7 +174,7 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
                       written_value(translate.z));
   for (std::size_t i = 0; i < nv; ++i) {
     glm::dvec3& x = mesh.exact[i];
-    for (int k = 0; k < 3; ++k) x[k] = s.coords[3 * i + k] * sc + tr[k];
+    for (int k = 0; k < 3; ++k) x[k] = std::fma(s.coords[3 * i + k], sc, tr[k]);
     mesh.positions[i] = vec3(x);
     if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
         !std::isfinite(mesh.positions[i].z))
