@@ -10,6 +10,7 @@
 // coordinates, which render space (scene/world.h) keeps small near the camera.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -18,6 +19,17 @@
 #include "geometry/ray.h"
 
 namespace whisker {
+
+// The float next to x in the direction of the sign of `dir` (x itself for
+// dir == 0): one step of the integer bit pattern, as pbrt-v4's NextFloatUp/
+// NextFloatDown, without the library call of std::nextafter.
+inline float float_step(float x, float dir) {
+  if (dir == 0.0f || std::isinf(x)) return x;
+  if (x == 0.0f) x = dir > 0.0f ? 0.0f : -0.0f;  // step off the zero of the right sign
+  const std::uint32_t b = std::bit_cast<std::uint32_t>(x);
+  const bool away = (dir > 0.0f) == (x >= 0.0f && !std::signbit(x));  // magnitude grows
+  return std::bit_cast<float>(away ? b + 1u : b - 1u);
+}
 
 // p moved along unit n by the distance the error box `err` (per-coordinate
 // bounds on |p - exact|) reaches along n, to the side `side` points to; each
@@ -28,10 +40,7 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& err, const vec3& n, con
   vec3 off = dist * n;
   if (glm::dot(side, n) < 0.0f) off = -off;
   vec3 o = p + off;
-  for (int i = 0; i < 3; ++i) {
-    if (off[i] > 0.0f) o[i] = std::nextafter(o[i], kInf);
-    else if (off[i] < 0.0f) o[i] = std::nextafter(o[i], -kInf);
-  }
+  for (int i = 0; i < 3; ++i) o[i] = float_step(o[i], off[i]);
   return o;
 }
 
@@ -39,7 +48,7 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& err, const vec3& n, con
 // above. `sphere` is kNoSkip for a triangle; `outward` the sphere's outward
 // normal; `err` the triangle point's error bound, ng its geometric normal.
 // For a sphere, `err` holds the point's low part instead (Ray::o_lo).
-inline Ray spawn_from(const vec3& p, const vec3& ng, const vec3& err, std::uint32_t sphere,
+[[gnu::always_inline]] inline Ray spawn_from(const vec3& p, const vec3& ng, const vec3& err, std::uint32_t sphere,
                       const vec3& outward, const vec3& d) {
   if (sphere != kNoSkip) {
     Ray r{p, d, 0.0f, kInf};
@@ -54,16 +63,27 @@ inline Ray spawn_from(const vec3& p, const vec3& ng, const vec3& err, std::uint3
 // A shadow ray from a surface point towards the point light at `target`,
 // aimed from its spawned origin (the direction from p itself, followed from
 // the moved origin, can miss the light and meet the surface it sits on). It
-// stops just short of the light: a light is never an occluder.
+// stops just short of the light: a light is never an occluder. wi and dist:
+// the unit direction and distance from p to target, which a sphere's ray
+// (leaving from p itself) keeps.
+inline Ray spawn_shadow_from(const vec3& p, const vec3& ng, const vec3& err, std::uint32_t sphere,
+                             const vec3& outward, const vec3& target, const vec3& wi,
+                             float dist) {
+  Ray r = spawn_from(p, ng, err, sphere, outward, wi);
+  if (sphere == kNoSkip) {
+    const vec3 to = target - r.o;
+    dist = std::sqrt(glm::dot(to, to));
+    r.d = to * (1.0f / dist);
+  }
+  r.tmax = dist * (1.0f - 1e-5f);
+  return r;
+}
+
 inline Ray spawn_shadow_from(const vec3& p, const vec3& ng, const vec3& err, std::uint32_t sphere,
                              const vec3& outward, const vec3& target) {
-  Ray r = spawn_from(p, ng, err, sphere, outward, target - p);
-  const vec3 to = target - r.o;
-  const float len = std::sqrt(glm::dot(to, to));
-  r.d = to / len;
-  if (sphere != kNoSkip) r.far_only = glm::dot(r.d, outward) < 0.0f;
-  r.tmax = len * (1.0f - 1e-5f);
-  return r;
+  const vec3 to = target - p;
+  const float dist = std::sqrt(glm::dot(to, to));
+  return spawn_shadow_from(p, ng, err, sphere, outward, target, to * (1.0f / dist), dist);
 }
 
 }  // namespace whisker

@@ -29,7 +29,7 @@ inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng
   // The geometric test keeps vertex normals from lighting the far side.
   if (!(cos_s > 0.0f && glm::dot(ng, wi) > 0.0f)) return false;
   ++rays;
-  const Ray shadow = spawn_shadow_ray(h, light.position);
+  const Ray shadow = spawn_shadow_ray(h, light.position, wi, d2 * inv_d);
   if (world.occluded_to_light(shadow, d2)) return false;
   weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
   return true;

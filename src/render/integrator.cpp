@@ -35,8 +35,9 @@ class FlushDenormals {
 // The light a path gathers from `ray` on, given its throughput `beta` so far,
 // the number of hits before it and how many of those were diffuse.
 // The ray is in render space (World).
-vec3 trace(const World& world, const RenderSettings& settings, Ray ray, vec3 beta,
+vec3 trace(const World& world, const RenderSettings& settings, const Ray& start, vec3 beta,
            int first_depth, int diffuse_hits, Sampler& sampler, PathStats& stats) {
+  Ray ray = start;
   vec3 L(0.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
   for (int depth = first_depth; depth <= settings.max_depth; ++depth) {

@@ -45,7 +45,8 @@ struct FacingNormals {
 // Diffuse, report section 3: a cosine-distributed bounce in `frame` (built
 // on the facing shading normal), leaving from the hit h; the estimator
 // is then rho * L_in.
-inline Ray sample_diffuse(const SurfaceHit& h, const Frame& frame, Sampler& sampler) {
+[[gnu::always_inline]] inline Ray sample_diffuse(const SurfaceHit& h, const Frame& frame,
+                                              Sampler& sampler) {
   float u1, u2;
   sampler.get2d(u1, u2);
   return spawn_ray(h, cosine_direction(frame, u1, u2));

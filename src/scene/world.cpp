@@ -156,7 +156,9 @@ void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const
   const glm::dvec3 nd = pd - glm::dvec3(s.center);
   out.t = float(t);
   out.p = vec3(pd);
-  out.outward = vec3(nd / glm::length(nd));
+  // pd lies on the sphere to double rounding: dividing by the radius gives
+  // a unit vector to far below float's precision, without a square root.
+  out.outward = vec3(nd * (1.0 / double(s.radius)));
   out.ng = s.inverted ? -out.outward : out.outward;
   out.ns = out.ng;
   out.material = &sphere_material_[hit.prim];

@@ -47,6 +47,10 @@ inline Ray spawn_ray(const SurfaceHit& h, const vec3& d) {
 inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target) {
   return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target);
 }
+// The same given the unit direction wi and distance from h.p to target.
+inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target, const vec3& wi, float dist) {
+  return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target, wi, dist);
+}
 
 // Render space: the World holds every position relative to the scene's
 // camera (pbrt-v4's "camera-world" space), subtracted in double from the
