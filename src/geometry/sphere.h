@@ -53,6 +53,19 @@ inline float intersect_sphere(const Sphere& s, const Ray& r) {
 // two and a square root. Otherwise (grazing rays, where g' is small, or a
 // poor start) the stable quadratic below decides.
 inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float);
+// x as a float and the float of its remainder: hi + lo is x to about 2^-48
+// of it (a hit point refined in double, kept as Ray::o and Ray::o_lo).
+// The empty asm keeps the compiler from treating double(float(x)) as x:
+// GCC 12 at -O3 -march=native folds it so in vectorised code (lo became 0).
+inline void split_double(const glm::dvec3& x, vec3& hi, vec3& lo) {
+  for (int k = 0; k < 3; ++k) {
+    float h = static_cast<float>(x[k]);
+    asm("" : "+x"(h));
+    hi[k] = h;
+    lo[k] = static_cast<float>(x[k] - static_cast<double>(h));
+  }
+}
+
 inline glm::dvec3 exact_origin(const Ray& r) { return glm::dvec3(r.o) + glm::dvec3(r.o_lo); }
 inline double refine_sphere_t(const Sphere& s, const Ray& r, float t_float) {
   const glm::dvec3 f = exact_origin(r) - glm::dvec3(s.center);

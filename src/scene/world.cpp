@@ -155,7 +155,7 @@ void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const
   const glm::dvec3 pd = exact_origin(ray) + t * glm::dvec3(ray.d);
   const glm::dvec3 nd = pd - glm::dvec3(s.center);
   out.t = float(t);
-  out.p = vec3(pd);
+  split_double(pd, out.p, out.err);  // the low part in err (offset.h)
   // pd lies on the sphere to double rounding: dividing by the radius gives
   // a unit vector to far below float's precision, without a square root.
   out.outward = vec3(nd * (1.0 / double(s.radius)));
@@ -163,7 +163,6 @@ void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const
   out.ns = out.ng;
   out.material = &sphere_material_[hit.prim];
   out.sphere = hit.prim;
-  out.err = vec3(pd - glm::dvec3(out.p));  // the low part (offset.h)
 }
 
 // The point from the barycentric weights, not o + t d: a convex combination
