@@ -88,7 +88,8 @@ vec3 trace(const World& world, const RenderSettings& settings, const Ray& start,
 vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
               PathStats& stats) {
   const FlushDenormals ftz;
-  ray.o = world.to_render(ray.o);
+  // Into render space, the remainder kept (the camera itself maps to 0).
+  split_double(glm::dvec3(ray.o) - world.origin(), ray.o, ray.o_lo);
   return trace(world, settings, ray, vec3(1.0f), 0, 0, sampler, stats);
 }
 
