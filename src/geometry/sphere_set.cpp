@@ -21,6 +21,7 @@ SphereSet::SphereSet(const std::vector<Sphere>& spheres, std::vector<std::uint32
   cz_.assign(padded, 0.0f);
   r2_.assign(padded, -1.0f);
   idf_.assign(padded, -1.0f);
+  near2_.assign(padded, -1.0f);
   spheres_ = spheres;
   for (std::size_t k = 0; k < count_; ++k) {
     idf_[k] = float(id_[k]);
@@ -28,6 +29,7 @@ SphereSet::SphereSet(const std::vector<Sphere>& spheres, std::vector<std::uint32
     cy_[k] = spheres[k].center.y;
     cz_[k] = spheres[k].center.z;
     r2_[k] = spheres[k].radius * spheres[k].radius;
+    near2_[k] = r2_[k] * 0x1p-10f;
   }
 }
 
@@ -40,7 +42,7 @@ namespace {
 // float may get the sign of the near root wrong: the caller solves those
 // again in double.
 inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const float* r2,
-                    const float* idf, __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy,
+                    const float* near2, const float* idf, __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy,
                     __m256 dz, __m256 tmin, __m256 tmax, __m256 skip, __m256 far_only,
                     unsigned& near) {
   const __m256 fx = _mm256_sub_ps(ox, _mm256_loadu_ps(cx));
@@ -63,12 +65,14 @@ inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const flo
   const __m256 t0r = _mm256_and_ps(_mm256_div_ps(c, q), qnz);
   const __m256 inf = _mm256_set1_ps(kInf);
   const __m256 self = _mm256_cmp_ps(_mm256_loadu_ps(idf), skip, _CMP_EQ_OQ);
-  // On the skipped sphere the near root is dropped, and the far one too unless far_only.
-  const __m256 t0 = _mm256_blendv_ps(_mm256_min_ps(t0r, q), _mm256_set1_ps(-kInf), self);
-  const __m256 t1 = _mm256_blendv_ps(_mm256_max_ps(t0r, q), inf, _mm256_andnot_ps(far_only, self));
+  // On the skipped sphere the near root is dropped, and the far one too
+  // unless far_only: OR with the all-ones mask makes a NaN, which fails the
+  // interval tests below.
+  const __m256 t0 = _mm256_or_ps(_mm256_min_ps(t0r, q), self);
+  const __m256 t1 = _mm256_or_ps(_mm256_max_ps(t0r, q), _mm256_andnot_ps(far_only, self));
   const __m256 absc = _mm256_andnot_ps(sign, c);
-  near = unsigned(_mm256_movemask_ps(_mm256_andnot_ps(
-      self, _mm256_cmp_ps(absc, _mm256_mul_ps(rr, _mm256_set1_ps(0x1p-10f)), _CMP_LT_OQ))));
+  near = unsigned(_mm256_movemask_ps(
+      _mm256_andnot_ps(self, _mm256_cmp_ps(absc, _mm256_loadu_ps(near2), _CMP_LT_OQ))));
   const __m256 ok0 = _mm256_and_ps(_mm256_cmp_ps(t0, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t0, tmax, _CMP_LT_OQ));
   const __m256 ok1 = _mm256_and_ps(_mm256_cmp_ps(t1, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t1, tmax, _CMP_LT_OQ));
   __m256 t = _mm256_blendv_ps(_mm256_blendv_ps(inf, t1, ok1), t0, ok0);
@@ -140,7 +144,7 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
   bool found = false;
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
-    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
                      _mm256_set1_ps(best), skip, far_only, near);
     if (near) {
       alignas(32) float ts[8];
@@ -177,7 +181,7 @@ bool SphereSet::occluded(const Ray& r) const {
   const __m256 far_only = _mm256_castsi256_ps(_mm256_set1_epi32(r.far_only ? -1 : 0));
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
-    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
                      tmax, skip, far_only, near);
     if (near) {
       alignas(32) float ts[8];
