@@ -349,11 +349,13 @@ TEST(Accumulation, MillionsOfSamplesKeepPrecision) {
 }
 
 TEST(Accumulation, InfiniteSamplesAreDroppedAndCounted) {
-  // A light a ten-millionth above the ball's surface, at huge intensity: the
-  // direct term overflows float to +inf on the pixel that looks straight at it.
+  // A light a hundred-thousandth above the ball's surface (a few float ULPs
+  // at the 45 units from the camera that render space measures), at huge
+  // intensity: the direct term overflows float to +inf on the pixel that
+  // looks straight at it.
   Scene scene;
   scene.spheres.push_back({"ball", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, vec3(1.0f)}});
-  scene.light = {vec3(0.0f, 0.0f, 10.000001f), 1e30f};
+  scene.light = {vec3(0.0f, 0.0f, 10.00001f), 1e36f};
   scene.camera.width = scene.camera.height = 1;
   scene.settings.spp = scene.settings.target_spp = 4;
   const Snapshot s = render(scene);
@@ -404,6 +406,17 @@ TEST(DirectLight, VertexNormalsShadeButNeverLeakThroughTheTerminator) {
   EXPECT_EQ(leak.mean(0, 0, 0), 0.0f);
 }
 
+// The hit record of the point p (world space) of the unit ball, sphere 0 of
+// the World (render space, relative to the scene's camera).
+SurfaceHit on_ball(const World& world, const vec3& p) {
+  SurfaceHit h;
+  h.p = world.to_render(p);
+  h.err = vec3(glm::dvec3(p) - world.origin() - glm::dvec3(h.p));
+  h.ng = h.ns = h.outward = p;
+  h.sphere = 0;
+  return h;
+}
+
 // The direct-light module on its own: the point light the World owns, the
 // formula at a lit point, nothing (and no shadow ray) for a point facing
 // away, and nothing behind an occluder (whose shadow ray is counted).
@@ -419,7 +432,7 @@ TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
     const double d2 = glm::dot(to, to), cos_s = glm::dot(p, to) / std::sqrt(d2);
     std::uint64_t rays = 0;
     float weight = -1.0f;
-    ASSERT_TRUE(direct_light(world, vec3(p), vec3(p), vec3(p), rays, weight)) << deg;
+    ASSERT_TRUE(direct_light(world, on_ball(world, vec3(p)), vec3(p), vec3(p), rays, weight)) << deg;
     EXPECT_EQ(rays, 1u);
     // I/(4 pi d^2) * <N, w_i> / pi: the albedo is the caller's.
     const double expect = I * cos_s / (4.0 * kPi * kPi * d2);
@@ -428,13 +441,13 @@ TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
   std::uint64_t rays = 0;
   float weight = -1.0f;
   const vec3 down(0.0f, -1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(world, down, down, down, rays, weight));  // facing away
+  EXPECT_FALSE(direct_light(world, on_ball(world, down), down, down, rays, weight));  // facing away
   EXPECT_EQ(rays, 0u);
 
   s.spheres.push_back({"blocker", vec3(0.0f, 5.0f, 0.0f), 1.0f, 0.0f, {}});
   const World blocked(s);
   const vec3 up(0.0f, 1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(blocked, up, up, up, rays, weight));
+  EXPECT_FALSE(direct_light(blocked, on_ball(blocked, up), up, up, rays, weight));
   EXPECT_EQ(rays, 1u);
 }
 

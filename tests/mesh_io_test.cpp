@@ -55,9 +55,10 @@ TEST_F(MeshIo, LoadsTheCatWithAWarningForItsMissingMaterialLibrary) {
   EXPECT_NE(m.warnings[0].find("cat.mtl"), std::string::npos) << m.warnings[0];
   // First vertex of the file, "v  26.7292 34.3821 -4.2469": scale, then
   // translate, rounded once.
-  EXPECT_EQ(m.positions[0].x, std::fma(26.7292f, 0.6f, 0.0f));
-  EXPECT_EQ(m.positions[0].y, std::fma(34.3821f, 0.6f, -10.0f));
-  EXPECT_EQ(m.positions[0].z, std::fma(-4.2469f, 0.6f, 0.0f));
+  // Read, scaled and translated in double from the written numbers, then
+  // rounded once.
+  EXPECT_EQ(m.exact[0], glm::dvec3(26.7292 * 0.6, std::fma(34.3821, 0.6, -10.0), -4.2469 * 0.6));
+  EXPECT_EQ(m.positions[0], vec3(m.exact[0]));
 }
 
 TEST_F(MeshIo, TriangulatesPolygonsAndResolvesNegativeIndices) {

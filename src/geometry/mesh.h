@@ -14,6 +14,10 @@ using glm::vec3;
 
 struct TriangleMesh {
   std::vector<vec3> positions;          // world space (scale and translate applied)
+  // The same before rounding to float: the file's numbers read in double,
+  // scaled and translated in double. The World subtracts its render-space
+  // origin from these, so a mesh far from the origin keeps its shape.
+  std::vector<glm::dvec3> exact;
   std::vector<glm::uvec3> triangles;    // indices into positions
   std::vector<vec3> normals;            // optional per-vertex normals
   std::vector<glm::uvec3> normal_idx;   // per triangle: indices into normals (empty if none)

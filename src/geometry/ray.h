@@ -11,12 +11,24 @@ namespace whisker {
 using glm::vec3;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr std::uint32_t kNoSkip = 0xffffffffu;
 
 struct Ray {
   vec3 o{0.0f};
   vec3 d{0.0f, 0.0f, -1.0f};  // unit length
   float tmin = 0.0f;
   float tmax = kInf;
+  // A sphere the ray leaves (its index, kNoSkip for none): spawned on it with
+  // no offset, the ray ignores it when leaving it outwards (a sphere is
+  // convex) and takes only its far root when entering it (the near root is
+  // the origin itself). Exact at every scale, where an offset is not.
+  std::uint32_t skip = kNoSkip;
+  bool far_only = false;
+  // The origin's rounding residual: the exact origin is o + o_lo (a hit
+  // point refined in double keeps its low part). The double-precision sphere
+  // solutions start from there, so a ray leaving a sphere finds a surface a
+  // float ULP away on the right side (a hollow shell 1e-6 thick at 50).
+  vec3 o_lo{0.0f};
 };
 
 // Which kind of primitive a hit belongs to.

@@ -53,8 +53,22 @@ inline float intersect_sphere(const Sphere& s, const Ray& r) {
 // two and a square root. Otherwise (grazing rays, where g' is small, or a
 // poor start) the stable quadratic below decides.
 inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float);
+// x as a float and the float of its remainder: hi + lo is x to about 2^-48
+// of it (a hit point refined in double, kept as Ray::o and Ray::o_lo).
+// The empty asm keeps the compiler from treating double(float(x)) as x:
+// GCC 12 at -O3 -march=native folds it so in vectorised code (lo became 0).
+inline void split_double(const glm::dvec3& x, vec3& hi, vec3& lo) {
+  for (int k = 0; k < 3; ++k) {
+    float h = static_cast<float>(x[k]);
+    asm("" : "+x"(h));
+    hi[k] = h;
+    lo[k] = static_cast<float>(x[k] - static_cast<double>(h));
+  }
+}
+
+inline glm::dvec3 exact_origin(const Ray& r) { return glm::dvec3(r.o) + glm::dvec3(r.o_lo); }
 inline double refine_sphere_t(const Sphere& s, const Ray& r, float t_float) {
-  const glm::dvec3 f = glm::dvec3(r.o) - glm::dvec3(s.center);
+  const glm::dvec3 f = exact_origin(r) - glm::dvec3(s.center);
   const glm::dvec3 d(r.d);
   const double t = t_float;
   const glm::dvec3 p = f + t * d;
@@ -70,7 +84,7 @@ inline double refine_sphere_t(const Sphere& s, const Ray& r, float t_float) {
 // The double-precision root nearest t_float by the stable quadratic (same
 // form as intersect_sphere()).
 inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float) {
-  const glm::dvec3 f = glm::dvec3(r.o) - glm::dvec3(s.center);
+  const glm::dvec3 f = exact_origin(r) - glm::dvec3(s.center);
   const glm::dvec3 d(r.d);
   const double inv_len2 = 1.0 / glm::dot(d, d);  // d is unit in float, not in double
   const double b = -glm::dot(f, d) * inv_len2;
@@ -87,7 +101,7 @@ inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float) {
 // to double rounding, so o + t d lies on the sphere within about one float ULP
 // once rounded (no projection needed; Sphere.HitPointIsOnTheSurface).
 inline vec3 sphere_hit_point(const Ray& r, double t) {
-  return vec3(glm::dvec3(r.o) + t * glm::dvec3(r.d));
+  return vec3(exact_origin(r) + t * glm::dvec3(r.d));
 }
 
 // Outward geometric normal (inward for an inverted shell): p is on the

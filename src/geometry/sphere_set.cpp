@@ -2,7 +2,11 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+
+#include <glm/geometric.hpp>
 
 namespace whisker {
 
@@ -16,20 +20,31 @@ SphereSet::SphereSet(const std::vector<Sphere>& spheres, std::vector<std::uint32
   cy_.assign(padded, 0.0f);
   cz_.assign(padded, 0.0f);
   r2_.assign(padded, -1.0f);
+  idf_.assign(padded, -1.0f);
+  near2_.assign(padded, -1.0f);
+  spheres_ = spheres;
   for (std::size_t k = 0; k < count_; ++k) {
+    idf_[k] = float(id_[k]);
     cx_[k] = spheres[k].center.x;
     cy_[k] = spheres[k].center.y;
     cz_[k] = spheres[k].center.z;
     r2_[k] = spheres[k].radius * spheres[k].radius;
+    near2_[k] = r2_[k] * 0x1p-10f;
   }
 }
 
 namespace {
 
 // Eight lanes of intersect_sphere(): the RTG ch. 7 discriminant and Vieta root.
+// Lanes of `skip` (the sphere the ray leaves, see Ray::skip) keep only their
+// far root (far_only) or none. `near` receives the lanes whose origin lies so
+// close to the sphere (|c| < 2^-10 r^2, within about r/2000 of it) that
+// float may get the sign of the near root wrong: the caller solves those
+// again in double.
 inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const float* r2,
-                    __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy, __m256 dz,
-                    __m256 tmin, __m256 tmax) {
+                    const float* near2, const float* idf, __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy,
+                    __m256 dz, __m256 tmin, __m256 tmax, __m256 skip, __m256 far_only,
+                    unsigned& near) {
   const __m256 fx = _mm256_sub_ps(ox, _mm256_loadu_ps(cx));
   const __m256 fy = _mm256_sub_ps(oy, _mm256_loadu_ps(cy));
   const __m256 fz = _mm256_sub_ps(oz, _mm256_loadu_ps(cz));
@@ -48,8 +63,16 @@ inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const flo
   const __m256 q = _mm256_add_ps(b, _mm256_or_ps(sq, _mm256_and_ps(b, sign)));  // copysign
   const __m256 qnz = _mm256_cmp_ps(q, _mm256_setzero_ps(), _CMP_NEQ_OQ);
   const __m256 t0r = _mm256_and_ps(_mm256_div_ps(c, q), qnz);
-  const __m256 t0 = _mm256_min_ps(t0r, q), t1 = _mm256_max_ps(t0r, q);
   const __m256 inf = _mm256_set1_ps(kInf);
+  const __m256 self = _mm256_cmp_ps(_mm256_loadu_ps(idf), skip, _CMP_EQ_OQ);
+  // On the skipped sphere the near root is dropped, and the far one too
+  // unless far_only: OR with the all-ones mask makes a NaN, which fails the
+  // interval tests below.
+  const __m256 t0 = _mm256_or_ps(_mm256_min_ps(t0r, q), self);
+  const __m256 t1 = _mm256_or_ps(_mm256_max_ps(t0r, q), _mm256_andnot_ps(far_only, self));
+  const __m256 absc = _mm256_andnot_ps(sign, c);
+  near = unsigned(_mm256_movemask_ps(
+      _mm256_andnot_ps(self, _mm256_cmp_ps(absc, _mm256_loadu_ps(near2), _CMP_LT_OQ))));
   const __m256 ok0 = _mm256_and_ps(_mm256_cmp_ps(t0, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t0, tmax, _CMP_LT_OQ));
   const __m256 ok1 = _mm256_and_ps(_mm256_cmp_ps(t1, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t1, tmax, _CMP_LT_OQ));
   __m256 t = _mm256_blendv_ps(_mm256_blendv_ps(inf, t1, ok1), t0, ok0);
@@ -57,17 +80,78 @@ inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const flo
   return _mm256_blendv_ps(inf, t, hit);
 }
 
+// Both roots of |o + t d - c| = r in double (the stable form of
+// intersect_sphere()): f = o - c and |f|^2 - r^2 are exact to double rounding
+// from the float inputs and the origin's residual (Ray::o_lo), so the sign of the near root is right even for an
+// origin a float ULP off the sphere (a 1e-6 shell, a seam between walls).
+// Returns the smallest root in (tmin, tmax), or kInf.
+float solve_double(const Sphere& s, const Ray& r, float tmin, float tmax) {
+  const glm::dvec3 f = exact_origin(r) - glm::dvec3(s.center);
+  const glm::dvec3 d(r.d);
+  const double inv_len2 = 1.0 / glm::dot(d, d);
+  const double b = -glm::dot(f, d) * inv_len2;
+  const glm::dvec3 perp = f + b * d;
+  const double r2 = double(s.radius) * double(s.radius);
+  const double disc = (r2 - glm::dot(perp, perp)) * inv_len2;
+  if (disc < 0.0) return kInf;
+  const double c = (glm::dot(f, f) - r2) * inv_len2;
+  const double q = b + std::copysign(std::sqrt(disc), b);
+  const double a0 = q != 0.0 ? c / q : 0.0;
+  const float t0 = float(std::min(a0, q)), t1 = float(std::max(a0, q));
+  if (t0 > tmin && t0 < tmax) return t0;
+  if (t1 > tmin && t1 < tmax) return t1;
+  return kInf;
+}
+
 }  // namespace
+
+// The lanes of block k flagged `near` by hit_t(), solved again in double,
+// merged into t (8 floats).
+void SphereSet::redo_near(std::size_t k, unsigned near, const Ray& r, float tmax,
+                          float* t) const {
+  for (; near; near &= near - 1) {
+    const unsigned lane = unsigned(__builtin_ctz(near));
+    if (k + lane < count_) t[lane] = solve_double(spheres_[k + lane], r, r.tmin, tmax);
+  }
+}
+
+// Of the lanes in `tie`, the one whose root (the one float found, solved in
+// double from the exact origin) is nearest; on an exact tie (a ray through a
+// seam of two walls, by symmetry) the sphere listed first in the scene.
+int SphereSet::closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) const {
+  alignas(32) float ts[8];
+  _mm256_store_ps(ts, t);
+  int lane = -1;
+  double nearest = kInf;
+  for (; tie; tie &= tie - 1) {
+    const int l = __builtin_ctz(tie);
+    const double td = solve_sphere_t(spheres_[k + std::size_t(l)], r, ts[l]);
+    if (lane < 0 || td < nearest || (td == nearest && id_[k + std::size_t(l)] < id_[k + std::size_t(lane)])) {
+      nearest = td;
+      lane = l;
+    }
+  }
+  return lane;
+}
 
 bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t& index) const {
   const __m256 ox = _mm256_set1_ps(r.o.x), oy = _mm256_set1_ps(r.o.y), oz = _mm256_set1_ps(r.o.z);
   const __m256 dx = _mm256_set1_ps(r.d.x), dy = _mm256_set1_ps(r.d.y), dz = _mm256_set1_ps(r.d.z);
   const __m256 tmin = _mm256_set1_ps(r.tmin);
+  const __m256 skip = _mm256_set1_ps(r.skip == kNoSkip ? -2.0f : float(r.skip));
+  const __m256 far_only = _mm256_castsi256_ps(_mm256_set1_epi32(r.far_only ? -1 : 0));
   float best = tmax;
   bool found = false;
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
-    const __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], ox, oy, oz, dx, dy, dz, tmin,
-                           _mm256_set1_ps(best));
+    unsigned near = 0;
+    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+                     _mm256_set1_ps(best), skip, far_only, near);
+    if (near) {
+      alignas(32) float ts[8];
+      _mm256_store_ps(ts, t);
+      redo_near(k, near, r, best, ts);
+      t = _mm256_load_ps(ts);
+    }
     // Horizontal minimum without branches (hits are t < best; misses are
     // +inf), then the first lane that holds it.
     __m256 m = _mm256_min_ps(t, _mm256_permute2f128_ps(t, t, 1));
@@ -75,7 +159,12 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
     m = _mm256_min_ps(m, _mm256_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
     const float t_min = _mm256_cvtss_f32(m);
     if (!(t_min < best)) continue;
-    const int lane = __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(t, m, _CMP_EQ_OQ))));
+    int lane = __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(t, m, _CMP_EQ_OQ))));
+    // Spheres met within a few float ULPs of t of each other (a hollow
+    // shell 1e-6 thick, crossed): their order is decided in double.
+    const unsigned tie = unsigned(_mm256_movemask_ps(
+        _mm256_cmp_ps(t, _mm256_set1_ps(t_min * (1.0f + 0x1p-19f)), _CMP_LE_OQ)));
+    if (tie & (tie - 1)) lane = closest_of(k, tie, r, t);
     best = t_min;
     index = id_[k + lane];
     found = true;
@@ -88,8 +177,18 @@ bool SphereSet::occluded(const Ray& r) const {
   const __m256 ox = _mm256_set1_ps(r.o.x), oy = _mm256_set1_ps(r.o.y), oz = _mm256_set1_ps(r.o.z);
   const __m256 dx = _mm256_set1_ps(r.d.x), dy = _mm256_set1_ps(r.d.y), dz = _mm256_set1_ps(r.d.z);
   const __m256 tmin = _mm256_set1_ps(r.tmin), tmax = _mm256_set1_ps(r.tmax);
+  const __m256 skip = _mm256_set1_ps(r.skip == kNoSkip ? -2.0f : float(r.skip));
+  const __m256 far_only = _mm256_castsi256_ps(_mm256_set1_epi32(r.far_only ? -1 : 0));
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
-    const __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], ox, oy, oz, dx, dy, dz, tmin, tmax);
+    unsigned near = 0;
+    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+                     tmax, skip, far_only, near);
+    if (near) {
+      alignas(32) float ts[8];
+      _mm256_store_ps(ts, t);
+      redo_near(k, near, r, r.tmax, ts);
+      t = _mm256_load_ps(ts);
+    }
     if (_mm256_movemask_ps(_mm256_cmp_ps(t, tmax, _CMP_LT_OQ))) return true;
   }
   return false;

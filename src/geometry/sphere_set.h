@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <immintrin.h>
+
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
 
@@ -23,9 +25,14 @@ class SphereSet {
   std::size_t size() const { return count_; }
 
  private:
+  void redo_near(std::size_t k, unsigned near, const Ray& r, float tmax, float* t) const;
+  int closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) const;
   std::size_t count_ = 0;
   // Structure of arrays, padded to a multiple of 8 with spheres nothing hits.
-  std::vector<float> cx_, cy_, cz_, r2_;
+  // idf_ holds the ids as floats (exact below 2^24), for the skip test;
+  // near2_ is 2^-10 r^2, the near-surface bound.
+  std::vector<float> cx_, cy_, cz_, r2_, near2_, idf_;
+  std::vector<Sphere> spheres_;  // for the double-precision re-test
   std::vector<std::uint32_t> id_;
 };
 

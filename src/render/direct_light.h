@@ -16,11 +16,12 @@ namespace whisker {
 // with facing normals ng, ns, sets `weight` to everything but rho (the
 // caller's throughput holds it) and returns true when the light is in front
 // of the surface and visible; counts the shadow ray it traces in `rays`.
-inline bool direct_light(const World& world, const vec3& p, const vec3& ng, const vec3& ns,
+// The shadow ray leaves h by the spawn rule, aimed at the light from there.
+inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng, const vec3& ns,
                          std::uint64_t& rays, float& weight) {
   constexpr float kPi = 3.14159265358979323846f;
   const PointLight& light = world.light();
-  const vec3 to_light = light.position - p;
+  const vec3 to_light = light.position - h.p;
   const float d2 = glm::dot(to_light, to_light);
   const float inv_d = 1.0f / std::sqrt(d2);
   const vec3 wi = to_light * inv_d;
@@ -28,7 +29,7 @@ inline bool direct_light(const World& world, const vec3& p, const vec3& ng, cons
   // The geometric test keeps vertex normals from lighting the far side.
   if (!(cos_s > 0.0f && glm::dot(ng, wi) > 0.0f)) return false;
   ++rays;
-  const Ray shadow = spawn_shadow_ray(p, ng, light.position, wi);
+  const Ray shadow = spawn_shadow_ray(h, light.position, wi, d2 * inv_d);
   if (world.occluded_to_light(shadow, d2)) return false;
   weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
   return true;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <xmmintrin.h>
+
 #include "render/direct_light.h"
 #include "render/sampling.h"
 #include "render/scattering.h"
@@ -11,14 +13,31 @@ namespace whisker {
 
 namespace {
 
+// Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a camera
+// sample is traced, the caller's mode restored after. A path's throughput
+// falls geometrically; without this it sinks through the denormal range
+// (2^-126 to 2^-149, slow on most cores) instead of reaching the zero that
+// ends the path (RenderSettings::zero_cutoff), and a closed room of albedo
+// 0.75 runs every path to full depth. Nothing the estimator adds up is that
+// small: a value below 2^-126 of the light's scale contributes nothing.
+class FlushDenormals {
+ public:
+  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFtz | kDaz); }
+  ~FlushDenormals() { _mm_setcsr(saved_); }
+  FlushDenormals(const FlushDenormals&) = delete;
+  FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+ private:
+  static constexpr unsigned kFtz = 0x8000u, kDaz = 0x0040u;  // MXCSR bits 15 and 6
+  unsigned saved_;
+};
+
 // The light a path gathers from `ray` on, given its throughput `beta` so far,
 // the number of hits before it and how many of those were diffuse.
-// The ray comes as origin and direction (tmin 0, tmax infinite): vec3s
-// travel in registers, where a Ray passed by value is stored in pieces and
-// read back whole, a store-forwarding stall on every split branch.
-vec3 trace(const World& world, const RenderSettings& settings, vec3 o, vec3 d, vec3 beta,
+// The ray is in render space (World).
+vec3 trace(const World& world, const RenderSettings& settings, const Ray& start, vec3 beta,
            int first_depth, int diffuse_hits, Sampler& sampler, PathStats& stats) {
-  Ray ray{o, d, 0.0f, kInf};
+  Ray ray = start;
   vec3 L(0.0f);
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
   for (int depth = first_depth; depth <= settings.max_depth; ++depth) {
@@ -46,7 +65,7 @@ vec3 trace(const World& world, const RenderSettings& settings, vec3 o, vec3 d, v
     }
     const FacingNormals n(h, ray.d);
     float weight;
-    if (direct_light(world, h.p, n.ng, n.ns, stats.rays, weight)) L += beta * weight;
+    if (direct_light(world, h, n.ng, n.ns, stats.rays, weight)) L += beta * weight;
     if (!settings.indirect || depth == settings.max_depth) return L;
     const int split = split_factor(settings, diffuse_hits++, beta);
     const Frame frame(n.ns);
@@ -54,12 +73,12 @@ vec3 trace(const World& world, const RenderSettings& settings, vec3 o, vec3 d, v
       vec3 sum(0.0f);
       for (int k = 0; k < split; ++k) {
         Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
-        const Ray r = sample_diffuse(h.p, n.ng, frame, branch);
-        sum += trace(world, settings, r.o, r.d, beta, depth + 1, diffuse_hits, branch, stats);
+        const Ray r = sample_diffuse(h, frame, branch);
+        sum += trace(world, settings, r, beta, depth + 1, diffuse_hits, branch, stats);
       }
       return L + sum / float(split);
     }
-    ray = sample_diffuse(h.p, n.ng, frame, sampler);
+    ray = sample_diffuse(h, frame, sampler);
   }
   return L;
 }
@@ -68,7 +87,9 @@ vec3 trace(const World& world, const RenderSettings& settings, vec3 o, vec3 d, v
 
 vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
               PathStats& stats) {
-  return trace(world, settings, ray.o, ray.d, vec3(1.0f), 0, 0, sampler, stats);
+  const FlushDenormals ftz;
+  const Ray r = world.to_render(ray);
+  return trace(world, settings, r, vec3(1.0f), 0, 0, sampler, stats);
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,

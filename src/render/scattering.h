@@ -43,17 +43,18 @@ struct FacingNormals {
 };
 
 // Diffuse, report section 3: a cosine-distributed bounce in `frame` (built
-// on the facing shading normal), leaving from the side of ng; the estimator
+// on the facing shading normal), leaving from the hit h; the estimator
 // is then rho * L_in.
-inline Ray sample_diffuse(const vec3& p, const vec3& ng, const Frame& frame, Sampler& sampler) {
+[[gnu::always_inline]] inline Ray sample_diffuse(const SurfaceHit& h, const Frame& frame,
+                                              Sampler& sampler) {
   float u1, u2;
   sampler.get2d(u1, u2);
-  return spawn_ray(p, ng, cosine_direction(frame, u1, u2));
+  return spawn_ray(h, cosine_direction(frame, u1, u2));
 }
 
 // A perfect mirror about the shading normal.
 inline Ray sample_mirror(const Ray& ray, const SurfaceHit& h) {
-  return spawn_ray(h.p, h.ng, reflect(ray.d, h.ns));
+  return spawn_ray(h, reflect(ray.d, h.ns));
 }
 
 // Glass of index `ior` in air: refraction, or reflection on total internal
@@ -71,7 +72,7 @@ inline Ray sample_glass(const Ray& ray, const SurfaceHit& h, float ior, bool fre
   vec3 t;
   bool reflected = !refract(ray.d, n, n1 / n2, t);  // total internal reflection
   if (!reflected && fresnel) reflected = sampler.get1d() < schlick(glm::dot(ray.d, n), n1, n2);
-  return spawn_ray(h.p, h.ng, reflected ? reflect(ray.d, n) : t);
+  return spawn_ray(h, reflected ? reflect(ray.d, n) : t);
 }
 
 }  // namespace whisker

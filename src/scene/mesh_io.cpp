@@ -1,5 +1,6 @@
 // OBJ loading: a validating line scan that names the file and line of bad
 // input, then tinyobjloader for the parse and polygon triangulation.
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -55,6 +56,7 @@ struct Scan {
   long max_index = 0;            // largest positive vertex index seen
   std::size_t max_index_line = 0;
   std::vector<std::string> mtllibs;
+  std::vector<double> coords;  // the vertices' coordinates, read in double
 };
 
 // Checks every line: known keyword, finite numeric vertex coordinates, face
@@ -84,10 +86,11 @@ Scan scan(const std::string& path, const std::string& text) {
       for (int i = 0; i < 3; ++i) {
         const std::string tok(next_token(rest));
         char* e = nullptr;
-        const float x = tok.empty() ? 0.0f : std::strtof(tok.c_str(), &e);
+        const double x = tok.empty() ? 0.0 : std::strtod(tok.c_str(), &e);
         if (tok.empty() || e != tok.c_str() + tok.size())
           fail(path, line_no, "vertex needs three numbers");
-        if (!std::isfinite(x)) fail(path, line_no, "vertex coordinate is NaN or infinite");
+        if (!std::isfinite(float(x))) fail(path, line_no, "vertex coordinate is NaN or infinite");
+        s.coords.push_back(x);
       }
       ++s.vertices;
     } else if (key == "f") {
@@ -121,6 +124,18 @@ Scan scan(const std::string& path, const std::string& text) {
   return s;
 }
 
+// The decimal number the scene file wrote for a value the scene reader keeps
+// as a float, in double: the shortest decimal that reads back as that float
+// (std::to_chars), which is what the file says whenever it gave at most
+// float's 6-9 significant digits. A scale of 0.6 applied as 0.6f moves a
+// vertex at 1e6 by 0.024; applied as 0.6, by nothing a float can hold.
+double written_value(float x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  *r.ptr = '\0';
+  return std::strtod(buf, nullptr);
+}
+
 }  // namespace
 
 TriangleMesh load_obj(const std::string& path, float scale, const vec3& translate) {
@@ -149,11 +164,18 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
 
   const std::size_t nv = attrib.vertices.size() / 3;
+  // tinyobjloader reads floats (a 1/16 grid at 1e6): the coordinates come
+  // from the scan's double reading instead, in the same order.
+  if (s.coords.size() != 3 * nv) fail(path, 0, "tinyobjloader read a different vertex count");
   mesh.positions.resize(nv);
+  mesh.exact.resize(nv);
+  const double sc = written_value(scale);
+  const glm::dvec3 tr(written_value(translate.x), written_value(translate.y),
+                      written_value(translate.z));
   for (std::size_t i = 0; i < nv; ++i) {
-    // One rounding per coordinate, whatever the compiler fuses.
-    vec3& p = mesh.positions[i];
-    for (int k = 0; k < 3; ++k) p[k] = std::fma(attrib.vertices[3 * i + k], scale, translate[k]);
+    glm::dvec3& x = mesh.exact[i];
+    for (int k = 0; k < 3; ++k) x[k] = std::fma(s.coords[3 * i + k], sc, tr[k]);
+    mesh.positions[i] = vec3(x);
     if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
         !std::isfinite(mesh.positions[i].z))
       fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
@@ -180,9 +202,9 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
       }
       at += 3;
       if (!ok) fail(path, 0, "face index out of range");
-      // Zero area: the cross product of two edges, exact enough in double.
-      const glm::dvec3 p0(mesh.positions[tri[0]]), p1(mesh.positions[tri[1]]),
-          p2(mesh.positions[tri[2]]);
+      // Zero area: the cross product of two edges of the double-precision
+      // vertices (a mesh far from the origin is not flattened by float).
+      const glm::dvec3 p0(mesh.exact[tri[0]]), p1(mesh.exact[tri[1]]), p2(mesh.exact[tri[2]]);
       const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
       const glm::dvec3 c(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
                          e1.x * e2.y - e1.y * e2.x);

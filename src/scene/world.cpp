@@ -21,18 +21,22 @@ BvhMethod bvh_method(AccelKind k) {
 }
 
 World::World(const Scene& scene, const World* reuse) {
+  origin_ = glm::dvec3(scene.camera.position);
+  const auto here = [&](const vec3& p) { return to_render(p); };
   set_light_clearance(scene);
+  light_.position = here(scene.light.position);
   for (const auto& s : scene.spheres) {
+    const vec3 c = here(s.center);
     if (s.material.kind == MaterialKind::HollowGlass) {
       // Report section 2: a glass ball holding an air bubble whose normal is inverted.
       Material glass = s.material;
       glass.kind = MaterialKind::Glass;
-      spheres_.push_back({s.center, s.radius, false});
+      spheres_.push_back({c, s.radius, false});
       sphere_material_.push_back(glass);
-      spheres_.push_back({s.center, s.inner_radius, true});
+      spheres_.push_back({c, s.inner_radius, true});
       sphere_material_.push_back(glass);
     } else {
-      spheres_.push_back({s.center, s.radius, false});
+      spheres_.push_back({c, s.radius, false});
       sphere_material_.push_back(s.material);
     }
   }
@@ -47,42 +51,59 @@ World::World(const Scene& scene, const World* reuse) {
     return;
   }
   const BvhMethod method = bvh_method(scene.settings.accel);
+  // The triangles are in render space: a BVH is shared only by Worlds with
+  // the same camera position (a moved camera rebuilds it).
   if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
-      reuse->mesh_->method == method) {
+      reuse->mesh_->method == method && reuse->mesh_->origin == origin_) {
     mesh_ = reuse->mesh_;
-    objects_ = ObjectBvh(spheres_, mesh_->bounds);
-    return;
+  } else {
+    build_mesh(scene, method);
   }
+  objects_ = ObjectBvh(spheres_, mesh_->bounds);
+}
+
+void World::build_mesh(const Scene& scene, BvhMethod method) {
   auto data = std::make_shared<MeshData>();
-  data->sources = sources;
+  for (const auto& m : scene.meshes) data->sources.push_back(m.mesh.get());
   data->method = method;
+  data->origin = origin_;
   std::vector<Triangle> tris;
   bool any_normals = false;
   for (const auto& m : scene.meshes) any_normals |= m.vertex_normals && !m.mesh->normals.empty();
   for (std::uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
     const TriangleMesh& mesh = *scene.meshes[mi].mesh;
+    // Vertices in render space, subtracted in double from the double-precision
+    // positions when the loader kept them (one rounding to float).
+    const auto vertex = [&](unsigned i) {
+      return mesh.exact.empty() ? to_render(mesh.positions[i]) : vec3(mesh.exact[i] - origin_);
+    };
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const glm::uvec3 idx = mesh.triangles[t];
-      const Triangle tri{mesh.positions[idx.x], mesh.positions[idx.y], mesh.positions[idx.z]};
+      const Triangle tri{vertex(idx.x), vertex(idx.y), vertex(idx.z)};
       tris.push_back(tri);
       data->bounds.grow(bounds_of(tri));
       data->object.push_back(mi);
-      const vec3 n = glm::normalize(glm::cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+      // The unit normal of the float triangle the ray meets, from double edges.
+      const glm::dvec3 e1 = glm::dvec3(tri.v1) - glm::dvec3(tri.v0);
+      const glm::dvec3 e2 = glm::dvec3(tri.v2) - glm::dvec3(tri.v0);
+      const glm::dvec3 c = glm::cross(e1, e2);
+      const double len = glm::length(c);
+      const vec3 n = len > 0.0 ? vec3(c / len) : vec3(0.0f, 0.0f, 1.0f);
       data->ng.push_back(n);
       if (any_normals) {
-        std::array<vec3, 3> c{n, n, n};
+        std::array<vec3, 3> cn{n, n, n};
         if (!mesh.normal_idx.empty()) {
           const glm::uvec3 ni = mesh.normal_idx[t];
-          c = {glm::normalize(mesh.normals[ni.x]), glm::normalize(mesh.normals[ni.y]),
-               glm::normalize(mesh.normals[ni.z])};
+          cn = {glm::normalize(mesh.normals[ni.x]), glm::normalize(mesh.normals[ni.y]),
+                glm::normalize(mesh.normals[ni.z])};
         }
-        data->ns.push_back(c);
+        data->ns.push_back(cn);
       }
     }
   }
+  data->tris = tris;
   data->bvh = Bvh::build(std::move(tris), method);
   mesh_ = std::move(data);
-  objects_ = ObjectBvh(spheres_, mesh_->bounds);
 }
 
 void World::set_light_clearance(const Scene& scene) {
@@ -121,29 +142,59 @@ bool World::closest(const Ray& ray, Hit& hit) const {
 }
 
 void World::record(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+  if (hit.kind == PrimKind::Sphere) record_sphere(ray, hit, out);
+  else record_triangle(ray, hit, out);
+}
+
+// The distance refined in double (sphere.h), the point and the normal taken
+// from that double hit: the normal of a point rounded to float would be off
+// by an ULP of the coordinates over the radius (0.4 % for a 1e-3 ball at 50).
+void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+  const Sphere& s = spheres_[hit.prim];
+  const double t = refine_sphere_t(s, ray, hit.t);
+  const glm::dvec3 pd = exact_origin(ray) + t * glm::dvec3(ray.d);
+  const glm::dvec3 nd = pd - glm::dvec3(s.center);
+  out.t = float(t);
+  split_double(pd, out.p, out.err);  // the low part in err (offset.h)
+  // pd lies on the sphere to double rounding: dividing by the radius gives
+  // a unit vector to far below float's precision, without a square root.
+  out.outward = vec3(nd * (1.0 / double(s.radius)));
+  out.ng = s.inverted ? -out.outward : out.outward;
+  out.ns = out.ng;
+  out.material = &sphere_material_[hit.prim];
+  out.sphere = hit.prim;
+}
+
+// The point from the barycentric weights, not o + t d: a convex combination
+// of the vertices lies on their plane but for its own rounding, whatever the
+// error of the weights (they move it within the plane), so its distance from
+// the plane is bounded by err below, while o + t d carries the error of t
+// times |d| off the plane. The bound: b0 = 1 - u - v (two roundings, its
+// error e|b| makes the weights sum to 1 + e, moving p by e|p|), three
+// products and two sums, each rounding by at most 2^-24 of its magnitude: at
+// most 7 roundings of terms bounded by sum |b_i v_i|, pbrt-v4's gamma(7)
+// (Pharr, Jakob, Humphreys, "Physically Based Rendering" 4th ed. 6.8.5),
+// doubled for the terms a first-order bound leaves out.
+void World::record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+  const MeshData& m = *mesh_;
+  const std::uint32_t obj = m.object[hit.prim];
+  const Triangle& tri = m.tris[hit.prim];
+  const float b0 = 1.0f - hit.u - hit.v;
+  const vec3 a = b0 * tri.v0, b = hit.u * tri.v1, c = hit.v * tri.v2;
   out.t = hit.t;
-  if (hit.kind == PrimKind::Sphere) {
-    const Sphere& s = spheres_[hit.prim];
-    const double t = refine_sphere_t(s, ray, hit.t);
-    out.t = float(t);
-    out.p = sphere_hit_point(ray, t);
-    out.ng = sphere_normal(s, out.p);
-    out.ns = out.ng;
-    out.material = &sphere_material_[hit.prim];
-  } else {
-    const MeshData& m = *mesh_;
-    const std::uint32_t obj = m.object[hit.prim];
-    // Barycentric interpolation of the vertices would be more exact than
-    // o + t d for long rays; the ray offset's 256-ULP margin covers either.
-    out.p = ray.o + hit.t * ray.d;
-    out.ng = m.ng[hit.prim];
-    out.ns = out.ng;
-    if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
-      const auto& c = m.ns[hit.prim];
-      out.ns = glm::normalize((1.0f - hit.u - hit.v) * c[0] + hit.u * c[1] + hit.v * c[2]);
-    }
-    out.material = &mesh_material_[obj];
+  out.p = a + b + c;
+  constexpr float kGamma7x2 = 2.0f * 7.0f * 0x1p-24f / (1.0f - 7.0f * 0x1p-24f);
+  out.err = (glm::abs(a) + glm::abs(b) + glm::abs(c)) * kGamma7x2;
+  out.ng = m.ng[hit.prim];
+  out.ns = out.ng;
+  if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
+    const auto& cn = m.ns[hit.prim];
+    out.ns = glm::normalize(b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2]);
   }
+  out.material = &mesh_material_[obj];
+  out.sphere = kNoSkip;
+  out.outward = out.ng;
+  (void)ray;
 }
 
 bool World::occluded(const Ray& ray) const {

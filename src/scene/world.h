@@ -8,11 +8,14 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "geometry/bvh.h"
 #include "geometry/bvh_method.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
 #include "geometry/object_bvh.h"
+#include "geometry/offset.h"
 #include "scene/scene.h"
 
 namespace whisker {
@@ -22,12 +25,39 @@ BvhMethod bvh_method(AccelKind k);
 
 struct SurfaceHit {
   float t = kInf;
-  vec3 p{0.0f};   // hit point (on the surface to about one ULP)
+  vec3 p{0.0f};   // hit point (render space; see World)
   vec3 ng{0.0f};  // unit geometric normal (outward; inward for inverted shells)
   vec3 ns{0.0f};  // unit shading normal (== ng unless vertex normals are on)
   const Material* material = nullptr;
+  // How rays leave this point (geometry/offset.h): a sphere's hit is left
+  // from p itself, excluding that sphere (`sphere`, `outward` its outward
+  // normal; `err` then holds the low part of the double hit, p + err); a
+  // triangle's from p moved off the plane past `err`, a per-coordinate bound
+  // on the rounding error of p.
+  std::uint32_t sphere = kNoSkip;
+  vec3 outward{0.0f};
+  vec3 err{0.0f};
 };
 
+// A ray leaving the hit in direction d, and a shadow ray from it to the
+// point `target` (geometry/offset.h).
+inline Ray spawn_ray(const SurfaceHit& h, const vec3& d) {
+  return spawn_from(h.p, h.ng, h.err, h.sphere, h.outward, d);
+}
+inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target) {
+  return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target);
+}
+// The same given the unit direction wi and distance from h.p to target.
+inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target, const vec3& wi, float dist) {
+  return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target, wi, dist);
+}
+
+// Render space: the World holds every position relative to the scene's
+// camera (pbrt-v4's "camera-world" space), subtracted in double from the
+// scene's numbers, so a scene far from the origin renders as it would at the
+// origin, and float keeps its precision where the image needs it. Rays given
+// to intersect(), closest() and occluded() are in render space (to_render());
+// radiance() converts the camera's rays.
 class World {
  public:
   World() = default;
@@ -46,8 +76,20 @@ class World {
   }
   void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   bool occluded(const Ray& ray) const;
-  // The scene's point light, as it was when this World was built.
+  // The scene's point light, as it was when this World was built (its
+  // position in render space).
   const PointLight& light() const { return light_; }
+  // The world-space point that is render space's origin (the camera).
+  const glm::dvec3& origin() const { return origin_; }
+  vec3 to_render(const vec3& world_point) const {
+    return vec3(glm::dvec3(world_point) - origin_);
+  }
+  // A world-space ray (a camera ray) in render space, its origin's remainder
+  // kept in o_lo (the camera itself maps to 0).
+  Ray to_render(Ray ray) const {
+    split_double(glm::dvec3(ray.o) - origin_, ray.o, ray.o_lo);
+    return ray;
+  }
   // occluded() for a shadow ray from a hit point towards light().position,
   // dist2 = its squared length: when no sphere can stand between them (see
   // light_clear2_) only the triangles are tested. Same answer as occluded().
@@ -68,13 +110,18 @@ class World {
   struct MeshData {
     Bvh bvh;
     std::vector<std::uint32_t> object;    // per triangle: mesh index in the scene
+    std::vector<Triangle> tris;           // the triangles (render space), for hit points
     std::vector<vec3> ng;                 // per triangle: unit geometric normal
     std::vector<std::array<vec3, 3>> ns;  // per triangle corner normals (if any mesh uses them)
     std::vector<const TriangleMesh*> sources;  // identity of the meshes it was built from
     BvhMethod method = BvhMethod::Sah;
+    glm::dvec3 origin{0.0};  // the render space it was built in
     Box3 bounds;  // of all triangles
   };
   void set_light_clearance(const Scene& scene);
+  void build_mesh(const Scene& scene, BvhMethod method);
+  void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
+  void record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
 
   std::vector<Sphere> spheres_;
   ObjectBvh objects_;  // spheres and the mesh, one structure
@@ -92,6 +139,7 @@ class World {
   // from the light: shadow rays there never test the six wall spheres.
   float light_clear2_ = 0.0f;
   PointLight light_;  // the scene light (light_clear2_ is computed for it)
+  glm::dvec3 origin_{0.0};
 };
 
 }  // namespace whisker
