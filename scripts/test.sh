@@ -81,7 +81,9 @@ run_sanitized() {
     [ "$name" = asan-viewer ] && label=(-L viewer)
     local exclude=$sanitizer_exclude
     [ "$san" = thread ] && exclude=$tsan_exclude
-    ctest --output-on-failure -j "$jobs" -E "$exclude" "${label[@]}" "${ctest_args[@]}"
+    # The cluster scripts' tests (Slurm, GNU parallel) exercise shell and
+    # daemons, not more of Whisker's code than the shard tests: once is enough.
+    ctest --output-on-failure -j "$jobs" -E "$exclude" -LE cluster "${label[@]}" "${ctest_args[@]}"
   )
 }
 

@@ -6,4 +6,4 @@ add_test(NAME ShardsParallelScript
 add_test(NAME ShardsSlurmJobArray
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/shards/slurm_test.sh $<TARGET_FILE:whisker> ${CMAKE_SOURCE_DIR})
 set_tests_properties(ShardsParallelScript ShardsSlurmJobArray PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 600 RESOURCE_LOCK apt)
+  SKIP_RETURN_CODE 77 TIMEOUT 600 RESOURCE_LOCK apt LABELS cluster)
