@@ -38,12 +38,6 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # samples in Release (5-10x that under ASan/TSan); it shares its code path
 # with the shorter Progressive.* tests, which do run.
 sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$'
-# Timing-dependent: it pauses the renderer, sleeps 100 ms "to let the
-# running pass end" and expects no new pass after that; a pass of a
-# sanitizer build on a loaded machine can take longer (seen under ASan at
-# load 7 on 2 cores). To run here again once it waits for the renderer to
-# report itself idle instead of sleeping.
-sanitizer_exclude="$sanitizer_exclude|^Progressive\.PauseStopsAccumulationAndSnapshotsStayConsistent\$"
 # TSan looks for data races, and only the renderer (src/render/progressive.*)
 # starts threads: the suites of the geometry and scene layers, which never
 # do, run under ASan + UBSan only (they are most of the TSan run's time).

@@ -81,7 +81,13 @@ TEST(Progressive, PauseStopsAccumulationAndSnapshotsStayConsistent) {
   r.start();
   ASSERT_TRUE(r.wait_for(gen, 2));
   r.set_paused(true);
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // let the running pass end
+  // Wait for the running pass to end: the renderer reports no pass in
+  // flight once it has published that pass and waits in the pause (a fixed
+  // sleep was too short for a sanitizer build on a loaded machine).
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (r.pass_progress().rendering && std::chrono::steady_clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_FALSE(r.pass_progress().rendering) << "the pass in flight did not end within 30 s";
   Snapshot a;
   r.snapshot(a);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));

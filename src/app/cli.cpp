@@ -1,6 +1,8 @@
 #include "app/cli.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include <unistd.h>
 
 #include "render/image_io.h"
+#include "scene/quote.h"
 
 namespace whisker {
 
@@ -42,7 +45,8 @@ struct TypeName {
   std::string operator()(vec3 RenderSettings::*) const { return "R,G,B each" + bounds(f.hi); }
 };
 
-// An output path is usable if its folder exists and is writable.
+// An output path is usable if its folder exists and is writable, and the
+// path names a regular file or nothing.
 std::string check_output(const std::string& path, const char* option) {
   if (path.empty()) return {};
   const fs::path p(path);
@@ -50,10 +54,29 @@ std::string check_output(const std::string& path, const char* option) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
     return std::string(option) + " " + path + ": folder " + dir.string() + " does not exist";
-  if (fs::is_directory(p, ec)) return std::string(option) + " " + path + ": is a directory";
+  // Never replace a directory, FIFO, device node or socket (nor what a
+  // symbolic link points to) by a regular file.
+  if (const std::string why = not_replaceable(path); !why.empty())
+    return std::string(option) + " " + path + ": " + why;
   if (::access(dir.c_str(), W_OK) != 0)
     return std::string(option) + " " + path + ": folder " + dir.string() + " is not writable";
   return {};
+}
+
+// A float option's check: a finite number in [lo, hi]. (CLI::Range lets
+// NaN through, since every comparison with NaN is false.)
+CLI::Validator finite_in(double lo, double hi) {
+  std::ostringstream range;
+  range << "[" << lo << ", " << hi << "]";
+  return CLI::Validator(
+      [lo, hi, r = range.str()](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
+          return "must be a finite number in " + r + ", got " + cut_for_message(text);
+        return {};
+      },
+      "FLOAT in " + range.str());
 }
 
 void add_app_options(CLI::App& app, CommandLine& o) {
@@ -66,7 +89,7 @@ void add_app_options(CLI::App& app, CommandLine& o) {
       ->check(CLI::Range(1, 1 << 24));
   app.add_option("--threads", o.threads, "Worker threads (0 = all)")->check(CLI::Range(0, 1024));
   app.add_option("--light", o.light, "Light position x,y,z");
-  app.add_option("--intensity", o.intensity, "Light intensity")->check(CLI::Range(0.0, 1e30));
+  app.add_option("--intensity", o.intensity, "Light intensity")->check(finite_in(0.0, 1e30));
   app.add_option("--out", o.out_png, "PNG output (the report's display mapping)");
   app.add_option("--out-float", o.out_float, "Linear radiance output (.pfm or .exr)");
   app.add_option("--stats", o.stats_json, "Write render statistics as JSON");
@@ -84,13 +107,16 @@ void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_option("--checkpoint", o.checkpoint,
                  "Headless: also write --out-sum while rendering, at most every SECONDS (0: every "
                  "pass), to --resume a killed render")
-      ->check(CLI::Range(0.0, 1e9));
+      ->check(finite_in(0.0, 1e9));
 }
 
 }  // namespace
 
 int usage_error(const std::string& message) {
-  std::fprintf(stderr, "whisker: %s\n", message.c_str());
+  // What a message quotes is cut where it is built; this bounds the rest.
+  constexpr std::size_t kMax = 4000;
+  const std::string shown = message.size() > kMax ? cut_for_message(message, kMax) : message;
+  std::fprintf(stderr, "whisker: %s\n", shown.c_str());
   return kUsageError;
 }
 
@@ -98,6 +124,10 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
   app.set_version_flag("--version", "whisker 0.1");
   add_app_options(app, out);
+  // One line, like every other refusal: "whisker: --frames: ...".
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "whisker: " + cut_for_message(e.what(), 1000) + " (see --help)\n";
+  });
   const auto fields = setting_fields();
   std::vector<std::string> texts(fields.size());
   std::vector<CLI::Option*> options(fields.size());
@@ -113,7 +143,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
     if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())
-      return usage_error(std::string(fields[i].option) + " " + texts[i] + ": " + why);
+      return usage_error(std::string(fields[i].option) + " " + cut_for_message(texts[i]) + ": " + why);
     out.given.push_back(&fields[i]);
   }
   return std::nullopt;

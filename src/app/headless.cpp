@@ -6,10 +6,12 @@
 
 #include <unistd.h>
 
+#include "app/signals.h"
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
 #include "render/progressive.h"
 #include "render/stats_io.h"
+#include "scene/quote.h"
 
 namespace whisker {
 
@@ -41,10 +43,38 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   return 0;
 }
 
+// Waits until the render reaches its target or a signal asks to stop. It
+// polls: a signal handler cannot wake the renderer's condition variable.
+void wait_for_target(const ProgressiveRenderer& renderer, std::uint64_t gen,
+                     std::uint64_t target) {
+  Snapshot s;
+  while (!interrupt_signal()) {
+    renderer.snapshot(s);  // copies only when a new pass was published
+    if (s.generation == gen && !s.preview && (s.spp >= target || s.done)) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+// After Ctrl-C or SIGTERM: the outputs from the passes completed (if any),
+// a line saying what was written, and 128 + the signal's number.
+int finish_interrupted(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap,
+                       std::uint64_t gen, int threads) {
+  const int sig = interrupt_signal();
+  if (snap.generation != gen || snap.preview || snap.spp == 0) {
+    std::fprintf(stderr, "whisker: interrupted before the first pass ended; nothing written\n");
+    return interrupted_exit_code(sig);
+  }
+  write_outputs(o, scene, snap, threads);
+  std::fprintf(stderr, "whisker: interrupted: wrote the %llu passes completed (%llu spp)\n",
+               (unsigned long long)snap.passes, (unsigned long long)snap.spp);
+  return interrupted_exit_code(sig);
+}
+
 }  // namespace
 
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
+  scene.name = cut_for_message(scene.name);  // as echoed in the progress, the summary, the stats
   const std::uint64_t target =
       o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
   scene.settings.target_spp = int(target);
@@ -63,12 +93,13 @@ int run_headless(const HeadlessOptions& o) {
   for (;;) {
     // Poll for progress; the wait itself is on the renderer's condition.
     if (!tty) {
-      renderer.wait_for(gen, target);
+      wait_for_target(renderer, gen, target);
       renderer.snapshot(snap);
       break;
     }
     renderer.snapshot(snap);
     if (snap.generation == gen && (snap.spp >= target || snap.done)) break;
+    if (interrupt_signal()) break;
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (el > 2.0) {
       const double frac = double(snap.spp) / double(target);
@@ -83,7 +114,15 @@ int run_headless(const HeadlessOptions& o) {
   checkpoints.stop();
   if (shown) std::fprintf(stderr, "\r%*s\r", 70, "");
 
-  return write_outputs(o, scene, snap, renderer.threads());
+  if (interrupt_signal()) {
+    renderer.snapshot(snap);  // the last pass completed before the stop
+    return finish_interrupted(o, scene, snap, gen, renderer.threads());
+  }
+  const int code = write_outputs(o, scene, snap, renderer.threads());
+  if (!interrupt_signal()) return code;
+  // A signal during the writes: they were finished, each whole.
+  std::fprintf(stderr, "whisker: interrupted while writing; the outputs were finished\n");
+  return interrupted_exit_code(interrupt_signal());
 }
 
 }  // namespace whisker

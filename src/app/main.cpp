@@ -1,10 +1,14 @@
 // whisker: the viewer by default, or --headless renders.
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <system_error>
 
 #include "app/cli.h"
 #include "app/headless.h"
 #include "app/merge.h"
+#include "app/signals.h"
+#include "scene/quote.h"
 #include "scene/scene_io.h"
 #ifdef WHISKER_HAVE_VIEWER
 #include "viewer/viewer.h"
@@ -62,14 +66,25 @@ int viewer(const CommandLine& cl, const Scene& scene) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::string(argv[1]) == "merge") return run_merge(argc - 1, argv + 1);
+  if (argc > 1 && std::string(argv[1]) == "merge") {
+    install_signal_handlers(false);
+    return run_merge(argc - 1, argv + 1);
+  }
   CommandLine cl;
   if (const auto code = parse_command_line(argc, argv, cl)) return *code;
+  // Headless: Ctrl-C writes the passes so far; the viewer: ends at once.
+  // Both remove the temporary files of writes in progress.
+  install_signal_handlers(cl.headless);
   Scene scene;
   try {
     scene = load_scene(resolve_scene(cl.scene_name), cl.mesh);
   } catch (const SceneError& e) {
     return usage_error(e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file-system error the loaders did not turn into a message of their own.
+    return usage_error(cut_for_message(e.path1().string()) + ": " + e.code().message());
+  } catch (const std::system_error& e) {
+    return usage_error(resolve_scene(cl.scene_name).string() + ": " + e.code().message());
   }
   // Command-line settings override the scene file's.
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);

@@ -132,8 +132,7 @@ Snapshot snapshot_of(const Accumulation& acc) {
   s.height = acc.height;
   s.sum.resize(acc.sum.size());
   for (std::size_t k = 0; k < acc.sum.size(); ++k) s.sum[k] = float(acc.sum[k]);
-  s.sum_sq.resize(acc.sum_sq.size());
-  for (std::size_t k = 0; k < acc.sum_sq.size(); ++k) s.sum_sq[k] = float(acc.sum_sq[k]);
+  s.sum_sq = acc.sum_sq;
   s.spp = acc.samples();
   s.passes = acc.passes;
   s.nan_count = acc.nan_count;

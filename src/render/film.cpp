@@ -54,12 +54,11 @@ void Film::publish(Snapshot& s, bool preview) const {
   s.height = height_;
   if (preview) {
     s.sum = preview_;
-    s.sum_sq.assign(acc_sq_.size(), 0.0f);
+    s.sum_sq.assign(acc_sq_.size(), 0.0);
   } else {
     s.sum.resize(acc_.size());
     for (std::size_t k = 0; k < acc_.size(); ++k) s.sum[k] = float(acc_[k]);
-    s.sum_sq.resize(acc_sq_.size());
-    for (std::size_t k = 0; k < acc_sq_.size(); ++k) s.sum_sq[k] = float(acc_sq_[k]);
+    s.sum_sq = acc_sq_;
   }
 }
 

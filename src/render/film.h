@@ -31,7 +31,10 @@ inline bool finite_sample(const glm::vec3& c) {
 struct Snapshot {
   int width = 0, height = 0;
   std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
-  std::vector<float> sum_sq;  // per-pixel sum of squared luminance (noise estimate)
+  // Per-pixel sum of squared luminance (noise estimate); double, since a
+  // square doubles the exponent: float overflows for radiance near 1e19
+  // and underflows below 1e-19 (light intensities of 1e30 and 1e-30).
+  std::vector<double> sum_sq;
   std::uint64_t spp = 0;      // samples per pixel in `sum`
   std::uint64_t generation = 0;
   std::uint64_t version = 0;  // bumps with every published pass

@@ -1,16 +1,12 @@
 #include "render/image_io.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 
 #include <stb/stb_image_write.h>
-#include <unistd.h>
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>
@@ -29,32 +25,6 @@ unsigned char to_srgb8(float radiance) {
   if (!(radiance > 0.0f)) return 0;
   const float v = std::pow(radiance, 1.0f / 2.2f);
   return v >= 255.0f ? 255 : static_cast<unsigned char>(v);
-}
-
-void write_file_atomically(const std::string& path,
-                           const std::function<bool(const std::string&)>& writer) {
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw ImageError(path + ": cannot write: folder " + dir.string() + " does not exist");
-  if (fs::is_directory(target, ec)) throw ImageError(path + ": cannot write: is a directory");
-  // ".name.tmp-PID" beside the target, so the rename stays on one file system.
-  std::string tmp_name = target.filename().string();
-  tmp_name.insert(tmp_name.begin(), '.');
-  tmp_name += ".tmp-" + std::to_string(::getpid());
-  const std::string tmp = (dir / tmp_name).string();
-  errno = 0;  // so a failure's reason is the writer's, not an older one
-  if (!writer(tmp)) {
-    const std::string why = errno ? std::strerror(errno) : "write failed";
-    fs::remove(tmp, ec);
-    throw ImageError(path + ": cannot write: " + why);
-  }
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw ImageError(path + ": cannot write: " + ec.message());
-  }
 }
 
 namespace {
@@ -78,24 +48,27 @@ void write_png_rgb8(const std::string& path, int width, int height,
                     const std::vector<unsigned char>& rgb) {
   if (width <= 0 || height <= 0 || rgb.size() != std::size_t(width) * height * 3)
     throw ImageError(path + ": empty or malformed image");
-  write_file_atomically(path, [&](const std::string& tmp) {
-    return stbi_write_png(tmp.c_str(), width, height, 3, rgb.data(), width * 3) != 0;
-  });
+  // Encoded in memory, then written with checked calls: stb's own file
+  // writer ignores fwrite/fclose errors (a full disk gave a truncated PNG).
+  std::string bytes;
+  const auto append = [](void* to, void* data, int size) {
+    static_cast<std::string*>(to)->append(static_cast<const char*>(data), std::size_t(size));
+  };
+  if (!stbi_write_png_to_func(append, &bytes, width, height, 3, rgb.data(), width * 3))
+    throw ImageError(path + ": cannot encode the PNG");
+  write_bytes_atomically(path, bytes);
 }
 
 void write_pfm(const std::string& path, const Image& img) {
   check(img, path);
-  write_file_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) return false;
-    // PFM: "PF", size, negative scale = little endian; rows bottom to top.
-    out << "PF\n" << img.width << " " << img.height << "\n-1.0\n";
-    for (int y = img.height - 1; y >= 0; --y)
-      out.write(reinterpret_cast<const char*>(&img.rgb[std::size_t(y) * img.width * 3]),
-                std::streamsize(sizeof(float)) * img.width * 3);
-    out.close();
-    return bool(out);
-  });
+  // PFM: "PF", size, negative scale = little endian; rows bottom to top.
+  std::string bytes = "PF\n" + std::to_string(img.width) + " " + std::to_string(img.height) +
+                      "\n-1.0\n";
+  const std::size_t row = sizeof(float) * std::size_t(img.width) * 3;
+  bytes.reserve(bytes.size() + row * std::size_t(img.height));
+  for (int y = img.height - 1; y >= 0; --y)
+    bytes.append(reinterpret_cast<const char*>(&img.rgb[std::size_t(y) * img.width * 3]), row);
+  write_bytes_atomically(path, bytes);
 }
 
 Image read_pfm(const std::string& path) {

@@ -1,13 +1,14 @@
 // Writing images: PNG (the report's mapping), PFM and EXR (linear radiance).
-// Every writer goes through a temporary file renamed into place, so an
-// interrupted run never leaves a broken image.
+// Every writer goes through a temporary file renamed into place after
+// checked writes (render/atomic_file.h), so an interrupted run or a full
+// disk never leaves a broken image under its final name.
 #pragma once
 
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "render/atomic_file.h"
 #include "render/image.h"
 
 namespace whisker {
@@ -19,11 +20,6 @@ struct ImageError : std::runtime_error {
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
 // (light intensity applied), SCENES.md "Pixel value shown".
 unsigned char to_srgb8(float radiance);
-
-// Runs writer(temporary path) beside `path`, then renames the result onto
-// `path`; on failure removes the temporary and throws ImageError naming path.
-void write_file_atomically(const std::string& path,
-                           const std::function<bool(const std::string&)>& writer);
 
 // The report's mapping of `img` (to_srgb8) as an 8-bit PNG.
 void write_png(const std::string& path, const Image& img);

@@ -1,10 +1,9 @@
 #include "render/stats_io.h"
 
-#include <fstream>
-
 #include <nlohmann/json.hpp>
 
 #include "render/image_io.h"
+#include "scene/quote.h"
 #include "scene/settings_json.h"
 
 namespace whisker {
@@ -14,7 +13,7 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
   const double secs = snap.seconds;
   const double paths = double(snap.width) * snap.height * double(snap.spp);
   nlohmann::json j = {
-      {"scene", st.scene},
+      {"scene", cut_for_message(st.scene)},  // a name of megabytes is not copied whole
       {"width", snap.width},
       {"height", snap.height},
       {"spp", snap.spp},
@@ -33,12 +32,7 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
   if (st.settings) j["settings"] = settings_to_json(*st.settings);
   for (const auto& [key, value] : st.extra)
     std::visit([&, &key = key](const auto& v) { j[key] = v; }, value);
-  write_file_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << j.dump(2) << "\n";
-    out.close();
-    return bool(out);
-  });
+  write_bytes_atomically(path, j.dump(2) + "\n");
 }
 
 }  // namespace whisker

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene_io.h"
+#include "scene/quote.h"
 
 namespace whisker {
 
@@ -29,7 +30,9 @@ class Fields {
     throw SceneError(file_ + ": " + (field.empty() ? "top level" : field) + ": " + what);
   }
   std::string field(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
+    // Known keys are short; an unknown one may be megabytes, cut in messages.
+    const std::string k = cut_for_message(key);
+    return path_.empty() ? k : path_ + "." + k;
   }
 
   void only(std::initializer_list<const char*> allowed) const {
@@ -67,10 +70,12 @@ class Fields {
     if (!has(key)) return fallback;
     const json& v = at(key);
     if (!v.is_number_integer()) fail(field(key), "must be an integer, got " + type(v));
-    const long long x = v.get<long long>();
-    if (x < lo || x > hi)
+    // An unsigned value past the signed range would read as negative.
+    const bool past = v.is_number_unsigned() && v.get<unsigned long long>() > 0x7fffffffffffffffull;
+    const long long x = past ? hi : v.get<long long>();
+    if (past || x < lo || x > hi)
       fail(field(key), "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                           "], got " + std::to_string(x));
+                           "], got " + v.dump());
     return x;
   }
   bool boolean(const char* key, bool fallback) const {

@@ -11,6 +11,7 @@
 #include <tiny_obj_loader.h>
 
 #include "scene/mesh_io.h"
+#include "scene/quote.h"
 
 namespace whisker {
 namespace {
@@ -100,7 +101,7 @@ Scan scan(const std::string& path, const std::string& text) {
         char* e = nullptr;
         const long v = std::strtol(idx.c_str(), &e, 10);
         if (idx.empty() || e != idx.c_str() + idx.size())
-          fail(path, line_no, "face index '" + std::string(tok) + "' is not a number");
+          fail(path, line_no, "face index '" + cut_for_message(tok) + "' is not a number");
         if (v == 0 || (v < 0 && 0 - static_cast<std::size_t>(v) > s.vertices))
           fail(path, line_no, "face index " + idx + " out of range (" +
                                   std::to_string(s.vertices) + " vertices so far)");
@@ -149,10 +150,16 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
 
   TriangleMesh mesh;
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  for (const std::string& lib : s.mtllibs)
-    if (!std::filesystem::exists(dir / lib))
-      mesh.warnings.push_back(path + ": material library '" + lib +
-                              "' not found; materials ignored");
+  for (const std::string& lib : s.mtllibs) {
+    // The error_code form: a name over NAME_MAX, a symbolic link loop or a
+    // folder that cannot be searched is a message, not an exception.
+    std::error_code ec;
+    if (std::filesystem::exists(dir / lib, ec)) continue;
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      fail(path, 0, "material library '" + cut_for_message(lib) + "': " + ec.message());
+    mesh.warnings.push_back(path + ": material library '" + cut_for_message(lib) +
+                            "' not found; materials ignored");
+  }
 
   // Materials come from the scene file, so the library is never read.
   tinyobj::ObjReaderConfig config;

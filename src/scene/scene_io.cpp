@@ -1,4 +1,5 @@
 #include "scene/scene_io.h"
+#include "scene/quote.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +28,7 @@ Material read_material(const Fields& f) {
   Material m;
   const std::string type = f.string("type");
   if (!parse(type, m.kind))
-    f.fail(f.field("type"), "unknown material \"" + type + "\" (expected " +
+    f.fail(f.field("type"), "unknown material \"" + cut_for_message(type) + "\" (expected " +
                                 name_list(m.kind) + ")");
   if (m.kind == MaterialKind::Diffuse) m.albedo = f.vector("albedo", 0.0, 1.0, vec3(1.0f));
   if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
@@ -113,7 +114,7 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
     if (fs::is_regular_file(t, ec)) return t.lexically_normal();
   std::string where;
   for (const auto& t : tried) where += "\n  " + t.lexically_normal().string();
-  throw SceneError(field + ": mesh \"" + path + "\" not found; looked in:" + where +
+  throw SceneError(field + ": mesh \"" + cut_for_message(path) + "\" not found; looked in:" + where +
                    "\nput the file in one of these places, set WHISKER_ASSETS to its "
                    "folder, or pass --mesh PATH");
 }

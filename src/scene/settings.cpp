@@ -20,7 +20,8 @@ constexpr EnumName<AccelKind> kAccels[] = {{AccelKind::Brute, "brute"},
 using R = RenderSettings;
 
 // The table. A seed is read from JSON as a double, so the file keeps it to
-// 2^53; the command line takes any 64-bit value.
+// 2^53; the command line caps it the same way, so that every seed can be
+// written to a scene file.
 const SettingField kFields[] = {
     {"spp", "--spp", &R::spp, "Samples per pixel per pass", 1, 1 << 20, 1 << 16},
     {"max_depth", "--depth", &R::max_depth, "Max bounces after the camera hit", 0, 1000},
@@ -42,22 +43,26 @@ const SettingField kFields[] = {
 
 std::string bounds(double lo, double hi) {
   std::ostringstream s;
-  s << std::setprecision(12) << "[" << lo << ", " << hi << "]";
+  s << std::setprecision(16) << "[" << lo << ", " << hi << "]";
   return s.str();
 }
 
 template <class T>
 std::string integer_from_text(const SettingField& f, std::string_view text, T& out) {
-  T v{};
+  const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
+  const std::string out_of_range =
+      "must be in " + bounds(f.lo, hi) + ", got " + std::string(text.substr(0, 40));
+  // Read as a signed 64-bit value, so that "-1" is a negative number for an
+  // unsigned setting too (not 2^64 - 1); a value past the 64-bit range is
+  // out of range, not "not an integer".
+  long long v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec == std::errc::result_out_of_range && end == text.data() + text.size())
+    return out_of_range;
   if (ec != std::errc() || end != text.data() + text.size() || text.empty())
     return "expected an integer";
-  const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
-  if constexpr (std::is_signed_v<T>) {
-    if (double(v) < f.lo || double(v) > hi)
-      return "must be in " + bounds(f.lo, hi) + ", got " + std::string(text);
-  }
-  out = v;
+  if (v < static_cast<long long>(f.lo) || v > static_cast<long long>(hi)) return out_of_range;
+  out = T(v);
   return {};
 }
 

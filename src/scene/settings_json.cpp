@@ -1,4 +1,5 @@
 #include "scene/settings_json.h"
+#include "scene/quote.h"
 
 #include <algorithm>
 #include <climits>
@@ -38,7 +39,7 @@ E read_enum(const Fields& f, const char* key) {
   E e{};
   if (!parse(name, e))
     f.fail(f.field(key),
-           "unknown " + std::string(key) + " \"" + name + "\" (expected " + name_list(e) + ")");
+           "unknown " + std::string(key) + " \"" + cut_for_message(name) + "\" (expected " + name_list(e) + ")");
   return e;
 }
 

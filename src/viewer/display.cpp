@@ -137,13 +137,15 @@ void Display::upload(const Snapshot& s, bool with_sq) {
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RGB, GL_FLOAT,
                     s.sum.data());
   if (with_sq && s.sum_sq.size() >= std::size_t(s.width) * s.height) {
+    // The texture is float (GL takes no double texels); the snapshot's sums are double.
+    const std::vector<float> sq(s.sum_sq.begin(), s.sum_sq.end());
     glBindTexture(GL_TEXTURE_2D, tex_sq_);
     if (resize || !sq_valid_)
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, s.width, s.height, 0, GL_RED, GL_FLOAT,
-                   s.sum_sq.data());
+                   sq.data());
     else
       glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RED, GL_FLOAT,
-                      s.sum_sq.data());
+                      sq.data());
     sq_valid_ = true;
   } else if (resize) {
     sq_valid_ = false;

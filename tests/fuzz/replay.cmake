@@ -14,10 +14,6 @@ add_test(NAME Fuzz.ObjCorpusAndReproducers COMMAND fuzz_obj_replay
 set_tests_properties(Fuzz.SceneCorpusAndReproducers Fuzz.ObjCorpusAndReproducers
   PROPERTIES ENVIRONMENT WHISKER_FUZZ_STRICT=1 LABELS fuzz)
 
-# Findings not yet mended, run strictly (no tolerance): enabled with the fix.
-add_test(NAME Fuzz.ObjPendingReproducers COMMAND fuzz_obj_replay ${WHISKER_FUZZ_DIR}/reproducers/pending/obj)
-set_tests_properties(Fuzz.ObjPendingReproducers PROPERTIES
-  ENVIRONMENT WHISKER_FUZZ_STRICT=1 LABELS fuzz
-  # A mtllib name over 255 bytes: std::filesystem::exists throws
-  # filesystem_error out of load_obj (uncaught, exit 134) instead of MeshError.
-  DISABLED TRUE)
+# A finding not yet mended goes to reproducers/pending/<harness>/ with a
+# test of its own registered DISABLED here (run strictly, no tolerance),
+# and moves to reproducers/<harness>/ with its fix. None is pending now.

@@ -10,6 +10,3 @@ foreach(c IN LISTS WHISKER_HARD_CASES)
             --whisker $<TARGET_FILE:whisker> --case ${c})
   set_tests_properties(HardCase.${c} PROPERTIES LABELS hard_case TIMEOUT 600)
 endforeach()
-# Failing on the renderer as it stands (float sums of squares in the stats):
-# enabled once mended.
-set_tests_properties(HardCase.intensity PROPERTIES DISABLED TRUE)

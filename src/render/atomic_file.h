@@ -1,0 +1,32 @@
+// Output files written whole or not at all: every writer produces a
+// temporary file ".NAME.tmp-PID" beside its target, checks every write, the
+// fsync and the close, and renames it into place only then. The temporary
+// files in progress are listed so that a signal handler can remove them.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace whisker {
+
+// Why an output may not go to `path` ("" if it may): it names something
+// that is not a regular file (a directory, FIFO, device node, socket, or a
+// symbolic link to one), which the rename would replace.
+std::string not_replaceable(const std::string& path);
+
+// Runs writer(temporary path) beside `path`, syncs the result to disk and
+// renames it onto `path`; on any failure removes the temporary file and
+// throws ImageError "PATH: cannot write: REASON".
+void write_file_atomically(const std::string& path,
+                           const std::function<bool(const std::string&)>& writer);
+
+// `bytes` as the whole content of `path`, the same way, with checked
+// write(2), fsync(2) and close(2).
+void write_bytes_atomically(const std::string& path, std::string_view bytes);
+
+// Removes the temporary files being written now. Async-signal-safe (only
+// unlink(2) on names kept in static storage): for SIGINT/SIGTERM handlers.
+void remove_temp_files_now() noexcept;
+
+}  // namespace whisker

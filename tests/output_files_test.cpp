@@ -1,0 +1,202 @@
+// Output files and messages under faults: what may be replaced, a failed
+// write leaving nothing, the list of temporary files a signal handler
+// removes, cut quotes, integer options past their range, and the noise
+// estimate at extreme light intensities.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "render/film.h"
+#include "render/image_io.h"
+#include "scene/quote.h"
+#include "scene/scene_io.h"
+#include "scene/settings.h"
+
+namespace fs = std::filesystem;
+using namespace whisker;
+
+namespace {
+
+fs::path fresh_dir(const char* name) {
+  const fs::path d = fs::temp_directory_path() /
+                     ("whisker-out-" + std::string(name) + "-" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string write_error(const std::string& path, std::string_view bytes) {
+  try {
+    write_bytes_atomically(path, bytes);
+  } catch (const ImageError& e) {
+    return e.what();
+  }
+  return "(written)";
+}
+
+}  // namespace
+
+TEST(OutputFiles, OnlyRegularFilesOrNothingMayBeReplaced) {
+  const fs::path d = fresh_dir("kinds");
+  ASSERT_EQ(::mkfifo((d / "fifo").c_str(), 0600), 0);
+  fs::create_directory(d / "dir");
+  fs::create_symlink(d / "fifo", d / "link-to-fifo");
+  std::ofstream(d / "file") << "old";
+  fs::create_symlink(d / "file", d / "link-to-file");
+  EXPECT_EQ(not_replaceable((d / "file").string()), "");
+  EXPECT_EQ(not_replaceable((d / "missing").string()), "");
+  EXPECT_EQ(not_replaceable((d / "link-to-file").string()), "");
+  EXPECT_NE(not_replaceable((d / "fifo").string()).find("FIFO"), std::string::npos);
+  EXPECT_NE(not_replaceable((d / "link-to-fifo").string()).find("FIFO"), std::string::npos);
+  EXPECT_NE(not_replaceable((d / "dir").string()).find("directory"), std::string::npos);
+  EXPECT_NE(not_replaceable("/dev/null").find("device"), std::string::npos);
+
+  // The writers refuse too (the viewer's and merge's outputs are checked
+  // only here), and the FIFO stays a FIFO.
+  const std::string why = write_error((d / "link-to-fifo").string(), "new");
+  EXPECT_NE(why.find("link-to-fifo: cannot write: is a FIFO"), std::string::npos) << why;
+  EXPECT_TRUE(fs::is_fifo(d / "fifo"));
+  EXPECT_TRUE(fs::is_symlink(d / "link-to-fifo"));
+  EXPECT_EQ(write_error((d / "file").string(), "new"), "(written)");
+  EXPECT_EQ(file_text(d / "file"), "new");
+  fs::remove_all(d);
+}
+
+TEST(OutputFiles, AFailedWriterLeavesNothingBehind) {
+  const fs::path d = fresh_dir("fail");
+  const std::string target = (d / "img.pfm").string();
+  std::string tmp_seen;
+  try {
+    write_file_atomically(target, [&](const std::string& tmp) {
+      std::ofstream(tmp) << "half";
+      tmp_seen = tmp;
+      errno = ENOSPC;
+      return false;
+    });
+    ADD_FAILURE() << "no error";
+  } catch (const ImageError& e) {
+    EXPECT_EQ(std::string(e.what()), target + ": cannot write: No space left on device");
+  }
+  EXPECT_EQ(fs::path(tmp_seen).filename().string(), ".img.pfm.tmp-" + std::to_string(::getpid()));
+  EXPECT_FALSE(fs::exists(tmp_seen));
+  EXPECT_FALSE(fs::exists(target));
+  fs::remove_all(d);
+}
+
+TEST(OutputFiles, TemporaryFilesInProgressAreRemovedOnRequest) {
+  // What a SIGINT handler does: remove the temporary files being written.
+  const fs::path d = fresh_dir("temps");
+  bool existed = false, removed = false;
+  try {
+    write_file_atomically((d / "s.json").string(), [&](const std::string& tmp) {
+      std::ofstream(tmp) << "{}";
+      existed = fs::exists(tmp);
+      remove_temp_files_now();
+      removed = !fs::exists(tmp);
+      return true;
+    });
+  } catch (const ImageError&) {
+    // the sync of the removed file fails: an error, and nothing written
+  }
+  EXPECT_TRUE(existed);
+  EXPECT_TRUE(removed);
+  EXPECT_FALSE(fs::exists(d / "s.json"));
+  EXPECT_TRUE(fs::is_empty(d));
+  fs::remove_all(d);
+}
+
+TEST(OutputFiles, PngIsWrittenWhole) {
+  const fs::path d = fresh_dir("png");
+  Image img;
+  img.width = 3;
+  img.height = 2;
+  img.rgb.assign(18, 1000.0f);
+  write_png((d / "a.png").string(), img);
+  const std::string png = file_text(d / "a.png");
+  ASSERT_GT(png.size(), 20u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(png.substr(png.size() - 8, 4), "IEND");  // the last chunk, then its CRC
+  fs::remove_all(d);
+}
+
+TEST(Messages, LongQuotesAreCutAtACharacterBoundary) {
+  EXPECT_EQ(cut_for_message("short"), "short");
+  EXPECT_EQ(cut_for_message(std::string(300, 'k')), std::string(200, 'k') + "...");
+  // "é" is two bytes: a cut inside it keeps neither byte.
+  const std::string accents = std::string(199, 'a') + "\xc3\xa9" + "zzz";
+  EXPECT_EQ(cut_for_message(accents), std::string(199, 'a') + "...");
+}
+
+TEST(Messages, UnknownKeysOfMegabytesAreCut) {
+  const std::string key(1 << 20, 'x');
+  try {
+    parse_scene("{\"" + key + "\": 1}", "big.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string m = e.what();
+    EXPECT_LT(m.size(), 1000u);
+    EXPECT_NE(m.find("big.json: " + std::string(200, 'x') + "...: unknown key"), std::string::npos) << m;
+  }
+}
+
+TEST(Messages, IntegersPastTheirRangeAreReportedAsTyped) {
+  RenderSettings s;
+  const SettingField& seed = setting_field("seed");
+  EXPECT_EQ(set_from_text(seed, "-1", s), "must be in [0, 9007199254740992], got -1");
+  EXPECT_EQ(set_from_text(seed, "9007199254740993", s),
+            "must be in [0, 9007199254740992], got 9007199254740993");
+  EXPECT_EQ(set_from_text(seed, "99999999999999999999", s),
+            "must be in [0, 9007199254740992], got 99999999999999999999");
+  EXPECT_EQ(set_from_text(seed, "12x", s), "expected an integer");
+  EXPECT_EQ(set_from_text(seed, "9007199254740992", s), "");
+  EXPECT_EQ(s.seed, 9007199254740992ull);
+  EXPECT_EQ(set_from_text(setting_field("spp"), "-99999999999999999999", s),
+            "must be in [1, 65536], got -99999999999999999999");
+  // A scene file's integer past the signed 64-bit range is not "got -1".
+  try {
+    parse_scene(R"({"settings": {"spp": 18446744073709551615}})", "s.json");
+    ADD_FAILURE() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("got 18446744073709551615"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Film, RelativeStandardErrorIsFiniteAndScaleInvariant) {
+  // Two pixels, four samples each, scaled by 1, 1e30 and 1e-30: squares of
+  // 1e30 overflow float and squares of 1e-30 underflow it.
+  const auto snapshot = [](double k) {
+    Snapshot s;
+    s.width = 2;
+    s.height = 1;
+    s.spp = 4;
+    const double samples[2][4] = {{1, 2, 3, 4}, {0.5, 0.5, 1.5, 2.5}};
+    for (const auto& px : samples) {
+      double sum = 0, sq = 0;
+      for (double v : px) {
+        sum += v * k;
+        sq += (v * k) * (v * k);
+      }
+      for (int c = 0; c < 3; ++c) s.sum.push_back(float(sum));
+      s.sum_sq.push_back(sq);
+    }
+    return s;
+  };
+  const double e1 = snapshot(1).relative_standard_error();
+  // By hand: variances of the mean (5/3)/4 and (11/12)/4, mean of means 1.875.
+  EXPECT_NEAR(e1, std::sqrt((20.0 / 48 + 11.0 / 48) / 2) / 1.875, 1e-6);
+  for (double k : {1e30, 1e-30}) {
+    const double e = snapshot(k).relative_standard_error();
+    EXPECT_TRUE(std::isfinite(e)) << k;
+    EXPECT_NEAR(e, e1, 1e-5 * e1) << k;
+  }
+}
