@@ -124,6 +124,7 @@ TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
       {"--headless" + small + out + " --frames", "--frames: needs a value"},
       {"--headless stray" + small + out, "unexpected argument stray"},
       {"--headless --float-units nits" + small + out, "--float-units"},
+      {"--headless --float-units display" + small + out, "--float-units display is for --headless --out-float"},
       {"--headless" + small + " --out " + f("x.jpg"), "must end in .png"},
   };
   for (const Case& c : cases) {

@@ -318,6 +318,8 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
     if (ext == ".exr" && !have_exr())
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
+  if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
+    return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
       cl.out_sum.empty())
