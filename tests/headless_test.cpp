@@ -91,7 +91,7 @@ TEST(Headless, SplitWeightsReachTheRendererAndTheStats) {
   const fs::path dir = temp_dir();
   auto rays = [&](const std::string& extra, nlohmann::json& j) {
     const fs::path stats = dir / "s.json";
-    const Result r = run("--headless --quiet --scene indirect --spp 1 --seed 3 --out-float " +
+    const Result r = run("--headless --quiet --scene indirect --frames 1 --spp 1 --seed 3 --out-float " +
                          (dir / "x.pfm").string() + " --stats " + stats.string() + extra);
     EXPECT_EQ(r.code, 0) << r.output;
     std::ifstream sj(stats);

@@ -1,5 +1,8 @@
 #include "app/cli.h"
 
+#include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -63,54 +66,177 @@ std::string check_output(const std::string& path, const char* option) {
   return {};
 }
 
-// A float option's check: a finite number in [lo, hi]. (CLI::Range lets
-// NaN through, since every comparison with NaN is false.)
-CLI::Validator finite_in(double lo, double hi) {
-  std::ostringstream range;
-  range << "[" << lo << ", " << hi << "]";
-  return CLI::Validator(
-      [lo, hi, r = range.str()](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(v) || v < lo || v > hi)
-          return "must be a finite number in " + r + ", got " + cut_for_message(text);
+std::string number_text(double v) {
+  std::ostringstream s;
+  s << std::setprecision(12) << v;
+  std::string t = s.str();
+  if (const auto e = t.find("e+"); e != std::string::npos) t.erase(e + 1, 1);  // 1e30
+  return t;
+}
+
+// An integer option in [lo, hi]. The message reads "VALUE: why"; the parser
+// puts the option's name in front (one_line_error).
+CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
+  const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
+  const CLI::Validator v(
+      [=](std::string& text) -> std::string {
+        long long v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || end != text.data() + text.size() ||
+            (ec != std::errc() && ec != std::errc::result_out_of_range))
+          return text + ": expected an integer";
+        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+          return text + ": must be in " + range;
         return {};
       },
-      "FLOAT in " + range.str());
+      "");
+  return option->check(v)->type_name("INT in " + range);
+}
+
+// A finite number in [lo, hi], message as int_in's.
+CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
+  const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
+  const CLI::Validator v(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+          return text + ": expected a number";
+        if (v < lo || v > hi) return text + ": must be in " + range;
+        return {};
+      },
+      "");
+  return option->check(v)->type_name("NUMBER in " + range);
 }
 
 void add_app_options(CLI::App& app, CommandLine& o) {
-  app.add_flag("--headless", o.headless, "Render without a window");
+  app.add_flag("--headless", o.headless,
+               "Render without a window and write --out/--out-float/--stats: --frames N passes, "
+               "else the scene's target_spp samples per pixel");
   app.add_option("--scene", o.scene_name,
                  "Scene name (assets/scenes/NAME.json) or path to a scene file")
       ->capture_default_str();
   app.add_option("--mesh", o.mesh, "Use this OBJ file for the scene's meshes");
-  app.add_option("--frames", o.frames, "Passes to render (headless: default 1)")
-      ->check(CLI::Range(1, 1 << 24));
-  app.add_option("--threads", o.threads, "Worker threads (0 = all)")->check(CLI::Range(0, 1024));
+  int_in(app.add_option("--frames", o.frames,
+                 "Passes of --spp samples per pixel. Headless: render N passes and write the "
+                 "outputs (default: the scene's target_spp samples, see --target-spp). Viewer: "
+                 "render N passes, then keep the window open; with --screenshot, save it and exit"),
+         1, 1 << 24);
+  int_in(app.add_option("--threads", o.threads, "Worker threads (0 = all)"), 0, 1024);
   app.add_option("--light", o.light, "Light position x,y,z");
-  app.add_option("--intensity", o.intensity, "Light intensity")->check(finite_in(0.0, 1e30));
+  number_in(app.add_option("--intensity", o.intensity, "Light intensity"), 0.0, 1e30);
   app.add_option("--out", o.out_png, "PNG output (the report's display mapping)");
-  app.add_option("--out-float", o.out_float, "Linear radiance output (.pfm or .exr)");
+  app.add_option("--out-float", o.out_float,
+                 "Linear float output (.pfm or .exr; see --float-units); an EXR header holds "
+                 "the scene, spp, seed, camera, settings and render time");
   app.add_option("--stats", o.stats_json, "Write render statistics as JSON");
-  app.add_option("--screenshot", o.screenshot, "Viewer: save the window after --frames passes");
-  app.add_option("--edit-after", o.edit_after, "Viewer script: apply --edit-light after K passes")
-      ->check(CLI::Range(0, 1 << 24));
+  app.add_option("--screenshot", o.screenshot,
+                 "Viewer: save the window after --frames N passes and exit");
+  int_in(app.add_option("--edit-after", o.edit_after,
+                        "Viewer script: apply --edit-light after K passes"),
+         0, 1 << 24);
   app.add_option("--edit-light", o.edit_light, "Viewer script: new light position x,y,z");
   app.add_flag("--quiet", o.quiet, "No progress line");
+  number_in(app.add_option("--progress", o.progress_every,
+                           "Headless, stderr not a terminal (a pipe, a log): a progress line "
+                           "every SECONDS (default 5)"),
+            0.01, 1e9);
+  app.add_option("--float-units", o.float_units,
+                 "--out-float values: scene (radiance) or display (1.0 = the PNG's white, "
+                 "255^2.2 radiance)")
+      ->check(CLI::IsMember({"scene", "display"}))
+      ->capture_default_str();
   app.add_option("--samples", o.samples,
                  "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
   app.add_option("--resume", o.resume,
                  "Headless: continue the render in this accumulation file (.exr from --out-sum)");
   app.add_option("--out-sum", o.out_sum,
                  "Headless: accumulation file (.exr): exact sums, sample range, scene and settings");
-  app.add_option("--checkpoint", o.checkpoint,
+  number_in(app.add_option("--checkpoint", o.checkpoint,
                  "Headless: also write --out-sum while rendering, at most every SECONDS (0: every "
-                 "pass), to --resume a killed render")
-      ->check(finite_in(0.0, 1e9));
+                 "pass), to --resume a killed render"),
+            0.0, 1e9);
+}
+
+// Levenshtein distance, for "did you mean" hints.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The option names of `app` ("--frames", ...).
+std::vector<std::string> option_names(const CLI::App& app) {
+  std::vector<std::string> names;
+  for (const CLI::Option* opt : app.get_options())
+    for (const std::string& n : opt->get_lnames()) names.push_back("--" + n);
+  return names;
+}
+
+// "-headless": one dash before a long name. CLI11 would read it as -h plus
+// letters and print the help; say which option was meant instead.
+std::string single_dash_option(int argc, char** argv, const CLI::App& app) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.size() < 3 || a[0] != '-' || !std::isalpha(static_cast<unsigned char>(a[1]))) continue;
+    char* end = nullptr;
+    std::strtod(a.c_str(), &end);
+    if (end == a.c_str() + a.size()) continue;  // a number such as -inf: a value
+    const std::string hint = closest("-" + a.substr(0, a.find('=')), option_names(app));
+    return a + ": options start with two dashes" +
+           (hint.empty() ? std::string(" (see --help)") : "; did you mean " + hint + "?");
+  }
+  return {};
+}
+
+// A CLI11 error as one line: "--frames abc: expected an integer".
+std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
+  std::string m = e.what();
+  if (dynamic_cast<const CLI::ValidationError*>(&e)) {
+    // "NAME: VALUE: why" from int_in / number_in reads "NAME VALUE: why".
+    const auto k = m.find(": ");
+    if (k != std::string::npos && m.find(": ", k + 2) != std::string::npos) m.replace(k, 2, " ");
+  }
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    std::vector<std::string> extras = app.remaining();
+    if (!extras.empty()) {
+      const std::string& a = extras.front();
+      if (a.rfind("--", 0) == 0) {
+        const std::string hint = closest(a.substr(0, a.find('=')), option_names(app));
+        return "unknown option " + a +
+               (hint.empty() ? std::string(" (see --help)") : "; did you mean " + hint + "?");
+      }
+      return "unexpected argument " + a + " (options start with --; see --help)";
+    }
+  }
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find(" missing") != std::string::npos)
+    return m.substr(0, m.find(':')) + ": needs a value (see --help)";
+  std::replace(m.begin(), m.end(), '\n', ' ');
+  return m;
 }
 
 }  // namespace
+
+std::string closest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const std::string& c : candidates) {
+    if (const std::size_t d = edit_distance(word, c); d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
 
 int usage_error(const std::string& message) {
   // What a message quotes is cut where it is built; this bounds the rest.
@@ -134,11 +260,13 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   for (std::size_t i = 0; i < fields.size(); ++i)
     options[i] = app.add_option(fields[i].option, texts[i], fields[i].help)
                      ->type_name(std::visit(TypeName{fields[i]}, fields[i].member));
+  if (const std::string why = single_dash_option(argc, argv, app); !why.empty())
+    return usage_error(why);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kUsageError;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    return usage_error(one_line_error(e, app));
   }
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
@@ -160,26 +288,50 @@ std::string apply_command_line(const CommandLine& cl, Scene& scene) {
   return {};
 }
 
+bool given(const CommandLine& cl, const char* option) {
+  return std::any_of(cl.given.begin(), cl.given.end(),
+                     [&](const SettingField* f) { return std::string(f->option) == option; });
+}
+
+std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& s) {
+  const std::uint64_t spp = std::uint64_t(std::max(s.spp, 1));
+  if (cl.frames > 0) return std::uint64_t(cl.frames) * spp;
+  return s.target_spp > 0 ? std::uint64_t(s.target_spp) : spp;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
+  // One rule for where a render stops: --frames N passes, else the target.
+  if (cl.frames > 0 && given(cl, "--target-spp"))
+    return "--frames " + std::to_string(cl.frames) + " and --target-spp " +
+           std::to_string(s.target_spp) + " both set the samples per pixel; give one";
+  if (!cl.samples.empty() && given(cl, "--target-spp"))
+    return "--samples " + cl.samples + " sets the samples per pixel; drop --target-spp";
   // frames x spp samples per pixel must fit the target counter.
-  const int frames = std::max(cl.frames, 1);
-  if (std::uint64_t(frames) * std::uint64_t(s.spp) > (1ull << 30))
-    return "--frames " + std::to_string(frames) + " x --spp " + std::to_string(s.spp) +
+  if (cl.frames > 0 && std::uint64_t(cl.frames) * std::uint64_t(s.spp) > (1ull << 30))
+    return "--frames " + std::to_string(cl.frames) + " x --spp " + std::to_string(s.spp) +
            " is more than 2^30 samples per pixel";
   for (const auto& [path, option] :
        {std::pair{cl.out_png, "--out"}, {cl.out_float, "--out-float"},
         {cl.stats_json, "--stats"}, {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}}) {
     if (auto err = check_output(path, option); !err.empty()) return err;
   }
-  if (!cl.out_png.empty() && fs::path(cl.out_png).extension() != ".png")
+  if (!cl.out_png.empty() && lower_extension(cl.out_png) != ".png")
     return "--out " + cl.out_png + ": must end in .png";
   if (!cl.out_float.empty()) {
-    const auto ext = fs::path(cl.out_float).extension();
+    const auto ext = lower_extension(cl.out_float);
     if (ext != ".pfm" && ext != ".exr")
       return "--out-float " + cl.out_float + ": must end in .pfm or .exr";
     if (ext == ".exr" && !have_exr())
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
+  if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
+    return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
       cl.out_sum.empty())

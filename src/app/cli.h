@@ -2,6 +2,7 @@
 // The render-settings options come from the settings table (scene/settings.h).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,8 @@ struct CommandLine {
   int edit_after = -1;
   std::string edit_light;
   bool quiet = false;
+  double progress_every = 5.0;      // seconds between progress lines in a log
+  std::string float_units = "scene";  // of --out-float: "scene" or "display"
   // Sample-range shards and resuming (docs/SHARDS.md).
   std::string samples;  // "A:B"
   std::string resume;   // an accumulation file to continue
@@ -44,6 +47,19 @@ std::string apply_command_line(const CommandLine& cl, Scene& scene);
 
 // Checks the output paths and the options that go together.
 std::string check_outputs(const CommandLine& cl, const RenderSettings& settings);
+
+// Samples per pixel a render takes: --frames N passes of --spp, else the
+// scene's target_spp (--target-spp), else one pass.
+std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& settings);
+
+// Whether a settings option (e.g. "--target-spp") was given.
+bool given(const CommandLine& cl, const char* option);
+
+// ".png" of "x.PNG": the extension, lower case.
+std::string lower_extension(const std::string& path);
+
+// The candidate nearest to `word` in edits, or "" if none is close.
+std::string closest(const std::string& word, const std::vector<std::string>& candidates);
 
 // Prints "whisker: MESSAGE" to stderr; returns kUsageError.
 int usage_error(const std::string& message);

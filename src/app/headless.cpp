@@ -2,7 +2,11 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <thread>
+#include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
@@ -12,34 +16,73 @@
 #include "render/progressive.h"
 #include "render/stats_io.h"
 #include "scene/quote.h"
+#include "scene/scene_io.h"
+#include "scene/settings_json.h"
 
 namespace whisker {
 
 namespace {
 
+// The scene's camera as compact JSON (the scene file's "camera" object).
+std::string camera_json(const Scene& scene) {
+  return nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump();
+}
+
+// What the image is and how it was made, for the EXR header.
+ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
+                                  const Snapshot& snap) {
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3f", snap.seconds);
+  return {{"whisker.scene", scene.name},
+          {"whisker.units", o.display_units
+                                ? "display: 1.0 = 255^2.2 radiance, the report's white"
+                                : "scene: radiance, light intensity applied"},
+          {"whisker.spp", std::to_string(snap.spp)},
+          {"whisker.passes", std::to_string(snap.passes)},
+          {"whisker.seed", std::to_string(scene.settings.seed)},
+          {"whisker.seconds", seconds},
+          {"whisker.camera", camera_json(scene)},
+          {"whisker.light", nlohmann::json{{"position", {scene.light.position.x,
+                                                         scene.light.position.y,
+                                                         scene.light.position.z}},
+                                           {"intensity", scene.light.intensity}}
+                                .dump()},
+          {"whisker.settings", settings_to_json(scene.settings).dump()}};
+}
+
 // The images, the summary line and the stats of a finished render.
 int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, int threads) {
   const double secs = snap.seconds;
   const double pixels = double(snap.width) * snap.height;
-  const double paths = pixels * double(snap.spp);
+  const double samples = pixels * double(snap.spp);
   const Image img = mean_image(snap);
   if (!o.out_png.empty()) write_png(o.out_png, img);
-  if (!o.out_float.empty()) write_float_image(o.out_float, img);
+  if (!o.out_float.empty())
+    write_float_image(o.out_float, o.display_units ? display_referred(img) : img,
+                      render_attributes(o, scene, snap));
   if (!o.out_sum.empty())
     write_accumulation(o.out_sum, accumulation_of(snap, o.plan.start.first_sample, o.plan.id));
 
+  // A sample is one camera ray's estimate (with --split it continues as
+  // several paths); rays/s counts every ray traced.
   std::printf(
-      "%s %dx%d: %llu spp in %.3f s, %.3g paths/s, %.3g rays/s, %llu NaN/Inf dropped, %d threads",
+      "%s %dx%d: %llu spp in %.3f s, %.3g samples/s, %.3g rays/s, %llu NaN/Inf dropped, %d "
+      "threads",
       scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
-      secs > 0 ? paths / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
+      secs > 0 ? samples / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
       (unsigned long long)snap.nan_count, threads);
   if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
   if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
   if (!o.out_sum.empty()) std::printf(" -> %s", o.out_sum.c_str());
   std::printf("\n");
 
-  if (!o.stats_json.empty())
-    write_stats_json(o.stats_json, {scene.name, &snap, threads, &scene.settings, {}});
+  if (!o.stats_json.empty()) {
+    RenderStats st{scene.name, &snap, threads, &scene.settings, {}};
+    st.extra.emplace_back("camera", RenderStats::JsonText{camera_json(scene)});
+    if (!o.out_float.empty())
+      st.extra.emplace_back("float_units", std::string(o.display_units ? "display" : "scene"));
+    write_stats_json(o.stats_json, st);
+  }
   return 0;
 }
 
@@ -70,6 +113,68 @@ int finish_interrupted(const HeadlessOptions& o, const Scene& scene, const Snaps
   return interrupted_exit_code(sig);
 }
 
+// "4m 05s", "12.3 s": a duration for the progress line.
+std::string duration(double s) {
+  char buf[32];
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%.1f s", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%dm %02ds", int(s) / 60, int(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%dh %02dm", int(s) / 3600, int(s) / 60 % 60);
+  return buf;
+}
+
+// Progress on stderr. On a terminal one line redrawn in place (from 2 s on);
+// otherwise a plain line every `period` seconds, for logs. The time left is
+// from the rate measured since the first sample arrived, so setup (loading,
+// the BVH) does not inflate it; samples of the pass in flight count by tiles.
+class Progress {
+ public:
+  Progress(std::string name, std::uint64_t target, bool tty, double period)
+      : name_(std::move(name)), target_(target), tty_(tty), period_(period) {}
+
+  void update(double elapsed, const Snapshot& snap, std::uint64_t gen,
+              const ProgressiveRenderer::PassProgress& pass) {
+    double done = snap.generation == gen ? double(snap.spp) : 0.0;
+    if (pass.generation == gen && pass.rendering && pass.tiles_total > 0)
+      done += double(pass.pass_spp) * pass.tiles_done / pass.tiles_total;
+    if (done > 0 && first_time_ < 0) {
+      first_time_ = elapsed;
+      first_done_ = done;
+    }
+    const double dt = elapsed - first_time_;
+    const bool have_rate = first_time_ >= 0 && dt > 0.2 && done > first_done_;
+    const std::string eta =
+        have_rate ? duration((double(target_) - done) * dt / (done - first_done_)) : "--";
+    if (tty_) {
+      if (elapsed < 2.0) return;
+      std::fprintf(stderr, "\r%s: %.1f/%llu spp  %s  eta %s   ", name_.c_str(), done,
+                   (unsigned long long)target_, duration(elapsed).c_str(), eta.c_str());
+      shown_ = true;
+    } else if (elapsed >= next_line_) {
+      next_line_ = elapsed + period_;
+      if (elapsed < period_) return;  // nothing to say for short renders
+      std::fprintf(stderr, "%s: %.0f/%llu spp (%.0f%%), %s elapsed, eta %s\n", name_.c_str(),
+                   done, (unsigned long long)target_, 100.0 * done / double(target_),
+                   duration(elapsed).c_str(), eta.c_str());
+    }
+  }
+
+  void finish() const {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", 78, "");
+  }
+
+ private:
+  std::string name_;
+  std::uint64_t target_;
+  bool tty_;
+  double period_;
+  double first_time_ = -1, first_done_ = 0;
+  double next_line_ = 0;
+  bool shown_ = false;
+};
+
 }  // namespace
 
 int run_headless(const HeadlessOptions& o) {
@@ -86,13 +191,11 @@ int run_headless(const HeadlessOptions& o) {
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);
 
-  const bool tty = o.progress && ::isatty(2);
   const auto t0 = std::chrono::steady_clock::now();
   Snapshot snap;
-  bool shown = false;
+  Progress progress(scene.name, target, ::isatty(2), o.progress_every);
   for (;;) {
-    // Poll for progress; the wait itself is on the renderer's condition.
-    if (!tty) {
+    if (!o.progress) {  // nothing to print: wait for the target or a signal
       wait_for_target(renderer, gen, target);
       renderer.snapshot(snap);
       break;
@@ -101,18 +204,12 @@ int run_headless(const HeadlessOptions& o) {
     if (snap.generation == gen && (snap.spp >= target || snap.done)) break;
     if (interrupt_signal()) break;
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (el > 2.0) {
-      const double frac = double(snap.spp) / double(target);
-      std::fprintf(stderr, "\r%s: %llu/%llu spp  %.1f s  eta %.1f s   ", scene.name.c_str(),
-                   (unsigned long long)snap.spp, (unsigned long long)target, el,
-                   frac > 0 ? el / frac - el : 0.0);
-      shown = true;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    progress.update(el, snap, gen, renderer.pass_progress());
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   renderer.stop();
   checkpoints.stop();
-  if (shown) std::fprintf(stderr, "\r%*s\r", 70, "");
+  progress.finish();
 
   if (interrupt_signal()) {
     renderer.snapshot(snap);  // the last pass completed before the stop

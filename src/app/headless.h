@@ -15,7 +15,11 @@ struct HeadlessOptions {
   std::string out_png;
   std::string out_float;  // .pfm or .exr
   std::string stats_json;
-  bool progress = true;   // a progress line on stderr when it is a terminal
+  // Progress on stderr: on a terminal a line redrawn in place; otherwise (a
+  // pipe, a CI log) a plain line every progress_every seconds.
+  bool progress = true;
+  double progress_every = 5.0;
+  bool display_units = false;  // --out-float: 1.0 = the report's white (kReportWhite)
   // Which samples, from what start (--samples, --resume); unset: plan.target
   // = 0, the frames x spp samples of a render from sample 0.
   ShardPlan plan;

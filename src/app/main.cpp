@@ -27,6 +27,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_float = cl.out_float;
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
+  h.progress_every = cl.progress_every;
+  h.display_units = cl.float_units == "display";
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
@@ -63,6 +65,20 @@ int viewer(const CommandLine& cl, const Scene& scene) {
 #endif
 }
 
+// A scene that is not there: the bundled ones, and the nearest name.
+std::string missing_scene(const std::string& name) {
+  std::error_code ec;
+  const auto path = resolve_scene(name);
+  if (std::filesystem::exists(path, ec)) return {};
+  const auto names = list_scenes();
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  const std::string hint = closest(std::filesystem::path(name).stem().string(), names);
+  const std::string where = path.string() == name ? "" : path.string() + ": ";
+  return "--scene " + name + ": " + where + "scene file not found; bundled scenes: " +
+         list + (hint.empty() ? "" : "; did you mean --scene " + hint + "?");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -75,6 +91,10 @@ int main(int argc, char** argv) {
   // Headless: Ctrl-C writes the passes so far; the viewer: ends at once.
   // Both remove the temporary files of writes in progress.
   install_signal_handlers(cl.headless);
+  if (const std::string why = missing_scene(cl.scene_name); !why.empty()) return usage_error(why);
+  std::error_code ec;
+  if (!cl.mesh.empty() && !std::filesystem::is_regular_file(cl.mesh, ec))
+    return usage_error("--mesh " + cl.mesh + ": no such file");
   Scene scene;
   try {
     scene = load_scene(resolve_scene(cl.scene_name), cl.mesh);

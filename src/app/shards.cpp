@@ -41,8 +41,8 @@ std::string check_resume(const std::string& path, const Scene& scene, const Rend
 std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan) {
   plan = {};
   plan.id = render_identity(scene);
-  const std::uint64_t spp = std::uint64_t(scene.settings.spp);
-  const std::uint64_t frames = std::uint64_t(cl.frames > 0 ? cl.frames : 1);
+  // --frames N passes of --spp, else the scene's target (samples_per_pixel).
+  const std::uint64_t total = samples_per_pixel(cl, scene.settings);
   if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0) &&
       !cl.headless)
     return "--samples, --resume, --out-sum and --checkpoint need --headless";
@@ -52,7 +52,7 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
     return "--checkpoint needs --out-sum (the file it keeps up to date)";
   if ((!cl.out_sum.empty() || !cl.resume.empty()) && !have_exr())
     return "--out-sum and --resume need OpenEXR, and this build has none";
-  SampleRange range{0, frames * spp};
+  SampleRange range{0, total};
   if (!cl.samples.empty()) {
     if (cl.frames > 0) return "--samples A:B sets the passes (of --spp samples); drop --frames";
     if (!parse_sample_range(cl.samples, range))
@@ -70,7 +70,7 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   const SampleRange done = acc->ranges.front();
   if (cl.samples.empty()) {
     // --frames N: the render of N passes from the part's first sample.
-    range = {done.begin, done.begin + frames * spp};
+    range = {done.begin, done.begin + total};
   } else if (range.begin != done.end) {
     return "--samples " + cl.samples + ": " + cl.resume + " holds samples " +
            ranges_to_string({done}) + ", so the resumed range must start at " +

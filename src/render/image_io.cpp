@@ -1,6 +1,8 @@
 #include "render/image_io.h"
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +15,7 @@
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #endif
 
 namespace whisker {
@@ -97,13 +100,15 @@ bool have_exr() {
 #endif
 }
 
-void write_exr(const std::string& path, const Image& img) {
+void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes) {
   check(img, path);
 #ifdef WHISKER_HAVE_OPENEXR
   write_file_atomically(path, [&](const std::string& tmp) {
     try {
       Imf::Header header(img.width, img.height);
       for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+      for (const auto& [name, text] : attributes)
+        header.insert(name, Imf::StringAttribute(text));
       Imf::OutputFile file(tmp.c_str(), header);
       Imf::FrameBuffer fb;
       char* base = reinterpret_cast<char*>(const_cast<float*>(img.rgb.data()));
@@ -123,11 +128,22 @@ void write_exr(const std::string& path, const Image& img) {
 #endif
 }
 
-void write_float_image(const std::string& path, const Image& img) {
-  const std::string ext = fs::path(path).extension().string();
+void write_float_image(const std::string& path, const Image& img,
+                       const ImageAttributes& attributes) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));  // x.EXR too
   if (ext == ".pfm") return write_pfm(path, img);
-  if (ext == ".exr") return write_exr(path, img);
+  if (ext == ".exr") return write_exr(path, img, attributes);
   throw ImageError(path + ": unknown float image type \"" + ext + "\" (use .pfm or .exr)");
+}
+
+float report_white() { return std::pow(255.0f, 2.2f); }
+
+Image display_referred(const Image& img) {
+  Image out = img;
+  const float scale = 1.0f / report_white();
+  for (float& v : out.rgb) v *= scale;
+  return out;
 }
 
 }  // namespace whisker

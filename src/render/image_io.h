@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/atomic_file.h"
@@ -26,10 +27,22 @@ void write_png(const std::string& path, const Image& img);
 // 8-bit RGB pixels, row 0 at the top, as they are (a window's screenshot).
 void write_png_rgb8(const std::string& path, int width, int height,
                     const std::vector<unsigned char>& rgb);
+// Name and text of a string attribute in an EXR header (what was rendered how).
+using ImageAttributes = std::vector<std::pair<std::string, std::string>>;
+
 void write_pfm(const std::string& path, const Image& img);
-void write_exr(const std::string& path, const Image& img);  // throws if built without OpenEXR
-// By extension: .pfm or .exr.
-void write_float_image(const std::string& path, const Image& img);
+// Throws if built without OpenEXR; `attributes` go into the header as strings.
+void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes = {});
+// By extension, any case: .pfm or .exr (a PFM has no room for attributes).
+void write_float_image(const std::string& path, const Image& img,
+                       const ImageAttributes& attributes = {});
+
+// The radiance that the report's mapping min(255, L^(1/2.2)) shows as full
+// white: 255^2.2 (SCENES.md "Pixel value shown").
+float report_white();
+// `img` in display-referred units, 1.0 = report_white(): an HDR viewer at
+// exposure 0 (sRGB, about L^(1/2.2)) then shows what the PNG shows, unclipped.
+Image display_referred(const Image& img);
 Image read_pfm(const std::string& path);
 bool have_exr();
 

@@ -1,5 +1,7 @@
 #include "render/stats_io.h"
 
+#include <type_traits>
+
 #include <nlohmann/json.hpp>
 
 #include "render/image_io.h"
@@ -11,7 +13,7 @@ namespace whisker {
 void write_stats_json(const std::string& path, const RenderStats& st) {
   const Snapshot& snap = *st.snap;
   const double secs = snap.seconds;
-  const double paths = double(snap.width) * snap.height * double(snap.spp);
+  const double samples = double(snap.width) * snap.height * double(snap.spp);
   nlohmann::json j = {
       {"scene", cut_for_message(st.scene)},  // a name of megabytes is not copied whole
       {"width", snap.width},
@@ -21,7 +23,9 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
       {"generation", snap.generation},
       {"seconds", secs},
       {"passes_per_s", secs > 0 ? double(snap.passes) / secs : 0.0},
-      {"paths_per_s", secs > 0 ? paths / secs : 0.0},
+      // A sample is one camera ray's estimate; with splitting it continues
+      // as several paths, so this counts samples, not paths.
+      {"samples_per_s", secs > 0 ? samples / secs : 0.0},
       {"rays", snap.rays},
       {"rays_per_s", secs > 0 ? double(snap.rays) / secs : 0.0},
       {"nan_count", snap.nan_count},
@@ -31,7 +35,14 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
   };
   if (st.settings) j["settings"] = settings_to_json(*st.settings);
   for (const auto& [key, value] : st.extra)
-    std::visit([&, &key = key](const auto& v) { j[key] = v; }, value);
+    std::visit(
+        [&, &key = key](const auto& v) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(v)>, RenderStats::JsonText>)
+            j[key] = nlohmann::json::parse(v.text);
+          else
+            j[key] = v;
+        },
+        value);
   write_bytes_atomically(path, j.dump(2) + "\n");
 }
 

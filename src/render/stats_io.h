@@ -17,8 +17,12 @@ struct RenderStats {
   const Snapshot* snap = nullptr;
   int threads = 0;
   const RenderSettings* settings = nullptr;
-  // The caller's own fields (the viewer's window and UI timings).
-  using Value = std::variant<long long, double, std::vector<long long>>;
+  // The caller's own fields (the viewer's window and UI timings; the
+  // headless camera and float units). JsonText is written as the JSON it holds.
+  struct JsonText {
+    std::string text;
+  };
+  using Value = std::variant<long long, double, std::vector<long long>, std::string, JsonText>;
   std::vector<std::pair<std::string, Value>> extra;
 };
 

@@ -29,7 +29,7 @@ const SettingField kFields[] = {
     {"fresnel", "--fresnel", &R::fresnel, "Fresnel at glass"},
     {"aa", "--aa", &R::aa, "Anti-aliasing (Gaussian jitter)"},
     {"seed", "--seed", &R::seed, "Random seed", 0, 0x1p53},
-    {"target_spp", "--target-spp", &R::target_spp, "Viewer: stop at this many samples per pixel",
+    {"target_spp", "--target-spp", &R::target_spp, "Stop at this many samples per pixel (0 = never); headless renders this many unless --frames",
      0, 1 << 30},
     {"accel", "--accel", &R::accel, "Triangle acceleration"},
     {"sampler", "--sampler", &R::sampler, "Random numbers: independent (the report's) or sobol"},

@@ -1,0 +1,230 @@
+// End to end: the command line's rules and messages (how many samples a
+// headless render takes, option errors, progress in a log, float units and
+// what an image records about its render).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "render/image_io.h"
+
+namespace fs = std::filesystem;
+using namespace whisker;
+
+namespace {
+
+struct Outcome {
+  int code = -1;
+  std::string out, err;  // stdout, stderr
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class CommandLineE2E : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("whisker-cli-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string f(const std::string& name) const { return (dir_ / name).string(); }
+
+  // The binary with `args`; stdout and stderr apart (stderr is a file, not
+  // a terminal). `env` goes before it (e.g. "env -u WHISKER_ASSETS").
+  Outcome run(const std::string& args, const std::string& env = "") const {
+    const std::string cmd = env + " '" + WHISKER_BIN + "' " + args + " >'" + f("out.txt") +
+                            "' 2>'" + f("err.txt") + "'";
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(f("out.txt")),
+            slurp(f("err.txt"))};
+  }
+
+  // A small scene: a ball on a floor, `w` x `h` pixels, the given settings.
+  std::string scene(int w, int h, int spp, int target_spp) const {
+    std::ofstream(f("small.json"))
+        << R"({"name": "small", "camera": {"position": [0, 0, 55], "look_at": [0, 0, 0], )"
+        << "\"width\": " << w << ", \"height\": " << h << R"(},
+ "light": {"position": [-10, 20, 40], "intensity": 2e10},
+ "settings": {"spp": )" << spp << ", \"target_spp\": " << target_spp << R"(},
+ "spheres": [{"center": [0, -1000, 0], "radius": 990, "material": {"type": "diffuse", "albedo": [0, 0, 1]}},
+             {"center": [0, 0, 0], "radius": 10, "material": {"type": "diffuse", "albedo": [1, 1, 1]}}]})";
+    return f("small.json");
+  }
+
+  nlohmann::json stats() const { return nlohmann::json::parse(slurp(f("s.json"))); }
+
+  fs::path dir_;
+};
+
+}  // namespace
+
+TEST_F(CommandLineE2E, HeadlessTakesFramesElseTheScenesTarget) {
+  const std::string base = "--headless --quiet --scene " + scene(16, 16, 2, 6) + " --stats " +
+                           f("s.json") + " ";
+  struct Case {
+    std::string args;
+    int spp, passes;
+  };
+  const Case cases[] = {
+      {"", 6, 3},                      // the scene's target_spp: 3 passes of its spp 2
+      {"--frames 1", 2, 1},            // --frames N: N passes of --spp
+      {"--frames 2 --spp 3", 6, 2},
+      {"--target-spp 4", 4, 2},        // --target-spp is honoured
+      {"--target-spp 5", 5, 3},        // the last pass is cut to the target
+  };
+  for (const Case& c : cases) {
+    const Outcome r = run(base + c.args);
+    ASSERT_EQ(r.code, 0) << c.args << "\n" << r.err;
+    EXPECT_EQ(stats()["spp"], c.spp) << c.args;
+    EXPECT_EQ(stats()["passes"], c.passes) << c.args;
+  }
+  // A scene without a target (0 = never stop) renders one pass.
+  const std::string endless = "--headless --quiet --scene " + scene(16, 16, 3, 0) + " --stats " +
+                              f("s.json");
+  ASSERT_EQ(run(endless).code, 0);
+  EXPECT_EQ(stats()["spp"], 3);
+  // Both set where the render stops: refused, never one silently ignored.
+  const Outcome both = run(base + "--frames 2 --target-spp 4");
+  EXPECT_EQ(both.code, 2);
+  EXPECT_NE(both.err.find("--frames 2 and --target-spp 4"), std::string::npos) << both.err;
+}
+
+TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
+  const std::string out = " --out " + f("x.png");
+  const std::string small = " --scene " + scene(8, 8, 1, 1);
+  struct Case {
+    std::string args, expect;
+  };
+  const Case cases[] = {
+      {"-headless --scene cat" + out, "-headless: options start with two dashes; did you mean --headless?"},
+      {"--headless --frames abc" + small + out, "--frames abc: expected an integer"},
+      {"--headless --frames 0" + small + out, "--frames 0: must be in [1, 16777216]"},
+      {"--headless --intensity -5" + small + out, "--intensity -5: must be in [0, 1e30]"},
+      {"--headless --intensity nan" + small + out, "--intensity nan: expected a number"},
+      {"--headless --threads 2x" + small + out, "--threads 2x: expected an integer"},
+      {"--headless --scene cat.json" + out, "did you mean --scene cat?"},
+      {"--headless --scene cta" + out, "bundled scenes: antialiased-ball, cat, cat-brute,"},
+      {"--headless --scene cat --mesh " + f("nothere.obj") + out, "--mesh " + f("nothere.obj") + ": no such file"},
+      {"--headless --bogus" + small + out, "unknown option --bogus (see --help)"},
+      {"--headless --frams 2" + small + out, "unknown option --frams; did you mean --frames?"},
+      {"--headless" + small + out + " --frames", "--frames: needs a value"},
+      {"--headless stray" + small + out, "unexpected argument stray"},
+      {"--headless --float-units nits" + small + out, "--float-units"},
+      {"--headless --float-units display" + small + out, "--float-units display is for --headless --out-float"},
+      {"--headless" + small + " --out " + f("x.jpg"), "must end in .png"},
+  };
+  for (const Case& c : cases) {
+    const Outcome r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    // One line, "whisker: " first, and nothing else on either stream.
+    EXPECT_EQ(r.err.rfind("whisker: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+    EXPECT_EQ(r.err.find("or pass --mesh"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(f("x.png")));
+}
+
+TEST_F(CommandLineE2E, HelpSaysWhatFramesDoes) {
+  const Outcome r = run("--help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("render N passes, then keep the window open; with --screenshot, save it "
+                       "and exit"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("default: the scene's target_spp"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--float-units"), std::string::npos) << r.out;
+}
+
+TEST_F(CommandLineE2E, ExtensionsInAnyCase) {
+  const Outcome r = run("--headless --quiet --scene " + scene(8, 8, 1, 1) + " --out " + f("a.PNG") +
+                    " --out-float " + f("a.PFM"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(f("a.PNG")).substr(1, 3), "PNG");
+  EXPECT_EQ(read_pfm(f("a.PFM")).width, 8);
+}
+
+TEST_F(CommandLineE2E, ProgressLinesWhenStderrIsALog) {
+  // stderr is a file: plain lines every --progress seconds, each with the
+  // samples done of the target, the time elapsed and the time left.
+  const Outcome r = run("--headless --scene " + scene(128, 128, 16, 1) +
+                        " --frames 30 --progress 0.1 --out " + f("a.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream lines(r.err);
+  std::string line;
+  int n = 0, with_eta = 0;
+  while (std::getline(lines, line)) {
+    EXPECT_EQ(line.find('\r'), std::string::npos) << line;
+    EXPECT_EQ(line.rfind("small: ", 0), 0u) << line;
+    EXPECT_NE(line.find("/480 spp ("), std::string::npos) << line;
+    EXPECT_NE(line.find(" elapsed, eta "), std::string::npos) << line;
+    with_eta += line.find("eta --") == std::string::npos;
+    ++n;
+  }
+  EXPECT_GE(n, 2) << r.err;
+  EXPECT_GE(with_eta, 1) << r.err;  // a rate was measured
+  EXPECT_NE(r.out.find("samples/s"), std::string::npos) << r.out;
+  // --quiet: nothing on stderr.
+  EXPECT_EQ(run("--headless --quiet --scene " + scene(64, 64, 1, 1) + " --frames 2 --out " +
+                f("b.png"))
+                .err,
+            "");
+}
+
+TEST_F(CommandLineE2E, DisplayReferredFloatsAndWhatTheFileRecords) {
+  const std::string base =
+      "--headless --quiet --scene " + scene(16, 16, 1, 2) + " --seed 7 --stats " + f("s.json");
+  ASSERT_EQ(run(base + " --out-float " + f("scene.pfm")).code, 0);
+  EXPECT_EQ(stats()["float_units"], "scene");
+  const Outcome r = run(base + " --out-float " + f("display.pfm") + " --float-units display");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image a = read_pfm(f("scene.pfm")), b = read_pfm(f("display.pfm"));
+  ASSERT_EQ(a.rgb.size(), b.rgb.size());
+  const double white = std::pow(255.0, 2.2);
+  double brightest = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    EXPECT_NEAR(b.rgb[i], a.rgb[i] / white, 1e-6 * (1 + a.rgb[i] / white)) << i;
+    brightest = std::max(brightest, double(b.rgb[i]));
+  }
+  EXPECT_GT(brightest, 0.1);  // a lit ball, not scaled to nothing
+  const auto s = stats();
+  EXPECT_EQ(s["float_units"], "display");
+  EXPECT_EQ(s["camera"]["position"], nlohmann::json({0.0, 0.0, 55.0}));
+  EXPECT_EQ(s["camera"]["width"], 16);
+  EXPECT_EQ(s["settings"]["seed"], 7);
+  EXPECT_GT(s["samples_per_s"].get<double>(), 0.0);
+  if (!have_exr()) GTEST_SKIP() << "built without OpenEXR";
+  ASSERT_EQ(run(base + " --out-float " + f("a.exr") + " --float-units display").code, 0);
+  const std::string exr = slurp(f("a.exr"));
+  for (const char* text :
+       {"whisker.spp", "whisker.seed", "whisker.seconds", "whisker.settings", "whisker.scene",
+        "\"position\":[0.0,0.0,55.0]", "display: 1.0 = 255^2.2", "\"target_spp\":2"})
+    EXPECT_NE(exr.find(text), std::string::npos) << text;
+}
+
+TEST_F(CommandLineE2E, DefaultSceneRendersFromTheSourceTreesAssets) {
+  // The cat, as a fresh clone has it: no WHISKER_ASSETS, run from elsewhere.
+  const Outcome r = run("--headless --quiet --target-spp 1 --out-float " + f("cat.pfm"),
+                    "cd '" + dir_.string() + "' && env -u WHISKER_ASSETS -u WHISKER_SCENES");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const Image img = read_pfm(f("cat.pfm"));
+  ASSERT_EQ(img.width, 512);
+  // The middle of the image is the cat, lit.
+  const std::size_t c = (std::size_t(256) * 512 + 256) * 3;
+  EXPECT_GT(img.rgb[c] + img.rgb[c + 1] + img.rgb[c + 2], 0.0f);
+}
