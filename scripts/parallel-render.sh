@@ -19,22 +19,8 @@
 #                  paths and a shared OUT folder)
 set -euo pipefail
 
-usage() { echo "usage: $0 SCENE SPP TASKS [OUT.exr]" >&2; exit 2; }
-[ $# -ge 3 ] && [ $# -le 4 ] || usage
-scene=$1 spp=$2 tasks=$3
-out=${4:-$PWD/$(basename "${scene%.json}")-$spp.exr}
-[[ $spp =~ ^[1-9][0-9]*$ && $tasks =~ ^[1-9][0-9]*$ ]] || { echo "$0: SPP and TASKS must be positive integers" >&2; exit 2; }
-[ "$tasks" -le "$spp" ] || { echo "$0: TASKS ($tasks) must be at most SPP ($spp)" >&2; exit 2; }
-[[ $out == *.exr ]] || { echo "$0: OUT must end in .exr, got $out" >&2; exit 2; }
-command -v parallel >/dev/null || { echo "$0: GNU parallel not found (apt-get install parallel)" >&2; exit 2; }
-
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-whisker=${WHISKER:-$root/build/whisker}
-[ -x "$whisker" ] || { echo "$0: $whisker is not an executable (set WHISKER)" >&2; exit 2; }
-out=$(realpath -m "$out")
-[[ $scene == */* || $scene == *.json ]] && scene=$(realpath "$scene")
-parts=${out%.exr}.parts
-mkdir -p "$parts"
+source "$(dirname "${BASH_SOURCE[0]}")/render_parts_args.sh"
+render_parts_args parallel "GNU parallel not found (apt-get install parallel)" "$@"
 jobs=${JOBS:-1}
 threads=$(( $(nproc) / jobs )); [ "$threads" -ge 1 ] || threads=1
 read -r -a parallel_args <<<"${PARALLEL_ARGS:-}"

@@ -17,22 +17,8 @@
 #   WAIT=1        block until the merge job ends (sbatch --wait); exit with its status
 set -euo pipefail
 
-usage() { echo "usage: $0 SCENE SPP TASKS [OUT.exr]" >&2; exit 2; }
-[ $# -ge 3 ] && [ $# -le 4 ] || usage
-scene=$1 spp=$2 tasks=$3
-out=${4:-$PWD/$(basename "${scene%.json}")-$spp.exr}
-[[ $spp =~ ^[1-9][0-9]*$ && $tasks =~ ^[1-9][0-9]*$ ]] || { echo "$0: SPP and TASKS must be positive integers" >&2; exit 2; }
-[ "$tasks" -le "$spp" ] || { echo "$0: TASKS ($tasks) must be at most SPP ($spp)" >&2; exit 2; }
-[[ $out == *.exr ]] || { echo "$0: OUT must end in .exr, got $out" >&2; exit 2; }
-command -v sbatch >/dev/null || { echo "$0: sbatch not found: is Slurm installed here?" >&2; exit 2; }
-
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-whisker=${WHISKER:-$root/build/whisker}
-[ -x "$whisker" ] || { echo "$0: $whisker is not an executable (set WHISKER)" >&2; exit 2; }
-out=$(realpath -m "$out")
-[[ $scene == */* || $scene == *.json ]] && scene=$(realpath "$scene")
-parts=${out%.exr}.parts
-mkdir -p "$parts"
+source "$(dirname "${BASH_SOURCE[0]}")/render_parts_args.sh"
+render_parts_args sbatch "sbatch not found: is Slurm installed here?" "$@"
 read -r -a sbatch_args <<<"${SBATCH_ARGS:-}"
 
 # One script per job, kept beside the parts for the record.
