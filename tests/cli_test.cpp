@@ -228,3 +228,25 @@ TEST_F(CommandLineE2E, DefaultSceneRendersFromTheSourceTreesAssets) {
   const std::size_t c = (std::size_t(256) * 512 + 256) * 3;
   EXPECT_GT(img.rgb[c] + img.rgb[c + 1] + img.rgb[c + 2], 0.0f);
 }
+
+#ifdef WHISKER_HAVE_VIEWER
+TEST_F(CommandLineE2E, NoDisplayHintIsACommandThatWorks) {
+  // The viewer without a display exits 3 and suggests a headless command;
+  // that command, run as printed (on a small scene), must render.
+  const std::string sc = scene(8, 8, 1, 1);
+  const Outcome r = run("--scene " + sc, "env -u DISPLAY -u WAYLAND_DISPLAY");
+  ASSERT_EQ(r.code, 3) << r.err;
+  const std::string head = "  whisker ";
+  const std::size_t at = r.err.find(head);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  std::string args = r.err.substr(at + head.size());
+  args = args.substr(0, args.find('\n'));
+  EXPECT_NE(args.find("--headless"), std::string::npos) << args;
+  const std::size_t out = args.find("image.png");
+  ASSERT_NE(out, std::string::npos) << args;
+  args.replace(out, 9, f("hint.png"));
+  const Outcome h = run(args + " --quiet");
+  EXPECT_EQ(h.code, 0) << args << "\n" << h.err;
+  EXPECT_EQ(slurp(f("hint.png")).substr(1, 3), "PNG");
+}
+#endif

@@ -54,7 +54,7 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   if (code == 3)
     std::fprintf(stderr,
                  "whisker: no display for the viewer; render without a window with\n"
-                 "  whisker --headless --scene %s --frames 16 --out image.png\n",
+                 "  whisker --headless --scene %s --target-spp 32 --out image.png\n",
                  cl.scene_name.c_str());
   return code;
 #else
