@@ -134,19 +134,33 @@ int SphereSet::closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) c
   return lane;
 }
 
-bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t& index) const {
+// The loops below run in two passes. The first (kExact false) handles the
+// common case, no lane near its sphere and no tie, with no call in the loop:
+// every ymm register is caller-saved, so a call the loop might make (the
+// double-precision re-tests) would have the broadcast ray spilled to the
+// stack on every ray. Meeting either case, it gives up (kRetry) and the
+// second pass, out of line, runs the whole loop again with the re-tests:
+// the same arithmetic lane by lane, so the same answer as a single pass.
+namespace {
+enum : int { kMiss = 0, kFound = 1, kRetry = 2 };
+}  // namespace
+
+template <bool kExact>
+int SphereSet::intersect_pass(const Ray& r, float tmax, float& t_out, std::uint32_t& index) const {
   const __m256 ox = _mm256_set1_ps(r.o.x), oy = _mm256_set1_ps(r.o.y), oz = _mm256_set1_ps(r.o.z);
   const __m256 dx = _mm256_set1_ps(r.d.x), dy = _mm256_set1_ps(r.d.y), dz = _mm256_set1_ps(r.d.z);
   const __m256 tmin = _mm256_set1_ps(r.tmin);
   const __m256 skip = _mm256_set1_ps(r.skip == kNoSkip ? -2.0f : float(r.skip));
   const __m256 far_only = _mm256_castsi256_ps(_mm256_set1_epi32(r.far_only ? -1 : 0));
   float best = tmax;
+  std::uint32_t found_index = 0;
   bool found = false;
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
     __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
                      _mm256_set1_ps(best), skip, far_only, near);
     if (near) {
+      if constexpr (!kExact) return kRetry;
       alignas(32) float ts[8];
       _mm256_store_ps(ts, t);
       redo_near(k, near, r, best, ts);
@@ -164,16 +178,33 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
     // shell 1e-6 thick, crossed): their order is decided in double.
     const unsigned tie = unsigned(_mm256_movemask_ps(
         _mm256_cmp_ps(t, _mm256_set1_ps(t_min * (1.0f + 0x1p-19f)), _CMP_LE_OQ)));
-    if (tie & (tie - 1)) lane = closest_of(k, tie, r, t);
+    if (tie & (tie - 1)) {
+      if constexpr (!kExact) return kRetry;
+      lane = closest_of(k, tie, r, t);
+    }
     best = t_min;
-    index = id_[k + lane];
+    found_index = id_[k + std::size_t(lane)];
     found = true;
   }
-  if (found) t_out = best;
-  return found;
+  if (!found) return kMiss;
+  t_out = best;
+  index = found_index;
+  return kFound;
 }
 
-bool SphereSet::occluded(const Ray& r) const {
+[[gnu::noinline]] bool SphereSet::intersect_exact(const Ray& r, float tmax, float& t_out,
+                                                  std::uint32_t& index) const {
+  return intersect_pass<true>(r, tmax, t_out, index) == kFound;
+}
+
+bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t& index) const {
+  const int res = intersect_pass<false>(r, tmax, t_out, index);
+  if (res == kRetry) return intersect_exact(r, tmax, t_out, index);
+  return res == kFound;
+}
+
+template <bool kExact>
+int SphereSet::occluded_pass(const Ray& r) const {
   const __m256 ox = _mm256_set1_ps(r.o.x), oy = _mm256_set1_ps(r.o.y), oz = _mm256_set1_ps(r.o.z);
   const __m256 dx = _mm256_set1_ps(r.d.x), dy = _mm256_set1_ps(r.d.y), dz = _mm256_set1_ps(r.d.z);
   const __m256 tmin = _mm256_set1_ps(r.tmin), tmax = _mm256_set1_ps(r.tmax);
@@ -184,14 +215,25 @@ bool SphereSet::occluded(const Ray& r) const {
     __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
                      tmax, skip, far_only, near);
     if (near) {
+      if constexpr (!kExact) return kRetry;
       alignas(32) float ts[8];
       _mm256_store_ps(ts, t);
       redo_near(k, near, r, r.tmax, ts);
       t = _mm256_load_ps(ts);
     }
-    if (_mm256_movemask_ps(_mm256_cmp_ps(t, tmax, _CMP_LT_OQ))) return true;
+    if (_mm256_movemask_ps(_mm256_cmp_ps(t, tmax, _CMP_LT_OQ))) return kFound;
   }
-  return false;
+  return kMiss;
+}
+
+[[gnu::noinline]] bool SphereSet::occluded_exact(const Ray& r) const {
+  return occluded_pass<true>(r) == kFound;
+}
+
+bool SphereSet::occluded(const Ray& r) const {
+  const int res = occluded_pass<false>(r);
+  if (res == kRetry) return occluded_exact(r);
+  return res == kFound;
 }
 
 }  // namespace whisker

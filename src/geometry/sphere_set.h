@@ -25,6 +25,13 @@ class SphereSet {
   std::size_t size() const { return count_; }
 
  private:
+  // One pass of intersect() / occluded(); see sphere_set.cpp.
+  template <bool kExact>
+  int intersect_pass(const Ray& r, float tmax, float& t, std::uint32_t& index) const;
+  bool intersect_exact(const Ray& r, float tmax, float& t, std::uint32_t& index) const;
+  template <bool kExact>
+  int occluded_pass(const Ray& r) const;
+  bool occluded_exact(const Ray& r) const;
   void redo_near(std::size_t k, unsigned near, const Ray& r, float tmax, float* t) const;
   int closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) const;
   std::size_t count_ = 0;
