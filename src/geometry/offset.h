@@ -50,14 +50,19 @@ inline vec3 offset_ray_origin(const vec3& p, const vec3& err, const vec3& n, con
 // For a sphere, `err` holds the point's low part instead (Ray::o_lo).
 [[gnu::always_inline]] inline Ray spawn_from(const vec3& p, const vec3& ng, const vec3& err, std::uint32_t sphere,
                       const vec3& outward, const vec3& d) {
+  // One named result on both paths, built in place in the caller's Ray
+  // (two different return objects would be built here and then copied).
+  Ray r;
+  r.d = d;
   if (sphere != kNoSkip) {
-    Ray r{p, d, 0.0f, kInf};
+    r.o = p;
     r.o_lo = err;
     r.skip = sphere;
     r.far_only = glm::dot(d, outward) < 0.0f;
-    return r;
+  } else {
+    r.o = offset_ray_origin(p, err, ng, d);
   }
-  return Ray{offset_ray_origin(p, err, ng, d), d, 0.0f, kInf};
+  return r;
 }
 
 // A shadow ray from a surface point towards the point light at `target`,
