@@ -134,13 +134,6 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
   return true;
 }
 
-bool World::closest(const Ray& ray, Hit& hit) const {
-  hit = Hit{};
-  hit.t = ray.tmax;
-  objects_.intersect(ray, hit, mesh_ ? &mesh_->bvh : nullptr);
-  return hit.valid();
-}
-
 void World::record(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
   if (hit.kind == PrimKind::Sphere) record_sphere(ray, hit, out);
   else record_triangle(ray, hit, out);

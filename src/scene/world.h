@@ -69,7 +69,13 @@ class World {
   // The same in two steps, so that a caller can look at the material before
   // paying for the hit record (the double-precision sphere refinement):
   // closest hit only, then the record of that hit.
-  bool closest(const Ray& ray, Hit& hit) const;
+  // Inline: the caller's own initialisation of `hit` and this one merge.
+  bool closest(const Ray& ray, Hit& hit) const {
+    hit = Hit{};
+    hit.t = ray.tmax;
+    objects_.intersect(ray, hit, mesh_ ? &mesh_->bvh : nullptr);
+    return hit.valid();
+  }
   const Material& material(const Hit& hit) const {
     return hit.kind == PrimKind::Sphere ? sphere_material_[hit.prim]
                                         : mesh_material_[mesh_->object[hit.prim]];
