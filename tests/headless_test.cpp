@@ -12,28 +12,12 @@
 
 #include "render/image_io.h"
 #include "scene/settings.h"
+#include "run_whisker.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
 
 namespace {
-
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(WHISKER_BIN) + " " + args + " 2>&1";
-  Result r{-1, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path temp_dir() {
   const fs::path d = fs::temp_directory_path() / ("whisker-e2e-" + std::to_string(::getpid()));

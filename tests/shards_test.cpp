@@ -19,28 +19,12 @@
 #include <unistd.h>
 
 #include "render/accumulation_io.h"
+#include "run_whisker.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
 
 namespace {
-
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(WHISKER_BIN) + " " + args + " 2>&1";
-  Result r{-1, {}};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) r.output += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 std::string bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -8,48 +8,23 @@
 # prints the camera. Exit 77 (ctest: skipped) without xvfb-run or xdotool.
 #   viewer_input_test.sh path/to/whisker
 set -u
-bin=$1
-for tool in xvfb-run xdotool; do
-  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
-done
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+. "$(dirname "$0")/viewer_drive.sh"
+viewer_test_setup "$1" xvfb-run xdotool
 
 cat >"$dir/drive.sh" <<'EOF'
 #!/usr/bin/env bash
-# Runs inside xvfb-run. Presses are held for a moment so a frame sees them
-# even when the machine is busy.
+# Runs inside xvfb-run.
 bin=$1 dir=$2
-press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
-click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
-drag() {  # x0 y0 x1 y1
-  xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.2
-  for k in 1 2 3 4 5 6; do
-    xdotool mousemove --window "$wid" $(( $1 + ($3 - $1) * k / 6 )) $(( $2 + ($4 - $2) * k / 6 )); sleep 0.1
-  done
-  xdotool mouseup 1; sleep 0.5
-}
-session() {  # name actions...
-  local name=$1; shift
-  LIBGL_ALWAYS_SOFTWARE=1 "$bin" --scene three-balls --threads 1 >"$dir/$name.out" 2>"$dir/$name.err" &
-  local pid=$!
-  wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
-  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$name.err"; kill $pid; return; }
-  sleep 2
-  "$@"
-  press Escape
-  wait $pid
-  echo "exit $?" >>"$dir/$name.err"
-}
+. "$3"
 # The window is 912x800: the image left (512 wide), the panel right; at
 # (880, 780) the panel shows nothing but the space right of a label.
 A() { click 880 780; click 256 400; drag 880 780 300 400; press c; }
 B() { press r; drag 256 400 320 400; press c; }
-session A A
-session B B
+session A "" A
+session B "" B
 EOF
 
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir" "$(dirname "$0")/viewer_drive.sh"
 
 fail=0
 check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }

@@ -7,25 +7,15 @@
 # Exit 77 (ctest: skipped) without xvfb-run or xdotool.
 #   viewer_save_test.sh path/to/whisker
 set -u
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-for tool in xvfb-run xdotool python3; do
-  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
-done
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-mkdir "$dir/cwd"
+. "$(dirname "$0")/viewer_drive.sh"
+viewer_test_setup "$1" xvfb-run xdotool python3
 
 cat >"$dir/drive.sh" <<'INNER'
 #!/usr/bin/env bash
 bin=$1 dir=$2
-press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
-(cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" --scene three-balls --threads 1 --frames 2) \
-  >"$dir/E.out" 2>"$dir/E.err" &
-pid=$!
-wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
-[ -n "$wid" ] || { echo "no viewer window" >>"$dir/E.err"; kill $pid; exit 0; }
-# The title carries the samples per pixel: wait for both passes.
-for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 2 spp$" && break; sleep 0.5; done
+. "$3"
+open_viewer E "--frames 2" || exit 0
+wait_spp 2  # the title carries the samples per pixel: both passes done
 sleep 1
 # Ctrl+click turns the exposure slider (912x800 window, panel right) into a
 # text field.
@@ -40,7 +30,7 @@ wait $pid
 echo "exit $?" >>"$dir/E.err"
 INNER
 
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir" "$(dirname "$0")/viewer_drive.sh"
 "$bin" --headless --scene three-balls --frames 2 --threads 1 --quiet --out "$dir/ref.png" >/dev/null 2>&1
 
 cat >"$dir/compare.py" <<'INNER'

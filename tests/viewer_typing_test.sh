@@ -11,40 +11,18 @@
 # Exit 77 (ctest: skipped) without xvfb-run or xdotool.
 #   viewer_typing_test.sh path/to/whisker
 set -u
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-for tool in xvfb-run xdotool; do
-  command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
-done
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-mkdir "$dir/cwd"
+. "$(dirname "$0")/viewer_drive.sh"
+viewer_test_setup "$1" xvfb-run xdotool
 
 cat >"$dir/drive.sh" <<'INNER'
 #!/usr/bin/env bash
 bin=$1 dir=$2
-press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
-click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
-combo() { xdotool keydown ctrl; sleep 0.2; press "$1"; xdotool keyup ctrl; sleep 0.3; }  # held: a frame sees it
-typed() { xdotool type --delay 150 "$1"; sleep 0.5; }
-session() {  # name args actions...
-  local name=$1 args=$2; shift 2
-  (cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" --scene three-balls --threads 1 $args) \
-    >"$dir/$name.out" 2>"$dir/$name.err" &
-  local pid=$!
-  wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
-  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$name.err"; kill $pid; return; }
-  sleep 2
-  "$@"
-  press Escape
-  wait $pid
-  echo "exit $?" >>"$dir/$name.err"
-}
+. "$3"
 . "$dir/layout.sh"
 C() { click $PATH_X $PATH_Y; combo a; typed nosuch2; press Return; }
 D() { sleep 2; echo "alive after 2 passes" >"$dir/D.alive"; click $TARGET_X $TARGET_Y; combo a;
       typed 15; sleep 2; press Return
-      # The title carries the samples per pixel: wait (on a busy machine too) for 15.
-      for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " 15 spp$" && break; sleep 0.5; done; }
+      wait_spp 15; }  # the title carries the samples per pixel (a busy machine too)
 U() { xdotool mousemove --window "$wid" 256 400; sleep 0.2; xdotool mousedown 1; sleep 0.2
       for k in 1 2 3 4 5 6; do xdotool mousemove --window "$wid" $((256 + 10 * k)) 400; sleep 0.1; done
       xdotool mouseup 1; sleep 0.5; combo z; press c; combo y; press c; }
@@ -59,7 +37,7 @@ PATH_X=640 PATH_Y=538
 TARGET_X=620 TARGET_Y=791
 INNER
 
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir"
+timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir" "$(dirname "$0")/viewer_drive.sh"
 
 fail=0
 check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
