@@ -126,6 +126,9 @@ TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
       {"--headless --float-units nits" + small + out, "--float-units"},
       {"--headless --float-units display" + small + out, "--float-units display is for --headless --out-float"},
       {"--headless" + small + " --out " + f("x.jpg"), "must end in .png"},
+      {"merge --out " + f("m.exr"), "parts is required"},
+      {"merge " + f("a.exr") + " --bogus", "unknown option --bogus (see --help)"},
+      {"merge " + f("a.exr") + " --out", "--out: needs a value"},
   };
   for (const Case& c : cases) {
     const Outcome r = run(c.args);

@@ -246,6 +246,11 @@ int usage_error(const std::string& message) {
   return kUsageError;
 }
 
+int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
+  if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+  return usage_error(one_line_error(e, app));
+}
+
 std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
   app.set_version_flag("--version", "whisker 0.1");
@@ -265,8 +270,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    return usage_error(one_line_error(e, app));
+    return parse_failure(e, app);
   }
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;

@@ -9,6 +9,11 @@
 
 #include "scene/scene.h"
 
+namespace CLI {
+class App;
+class ParseError;
+}  // namespace CLI
+
 namespace whisker {
 
 inline constexpr int kUsageError = 2;  // bad option, bad scene, unwritable output
@@ -63,5 +68,9 @@ std::string closest(const std::string& word, const std::vector<std::string>& can
 
 // Prints "whisker: MESSAGE" to stderr; returns kUsageError.
 int usage_error(const std::string& message);
+
+// What a command-line parser's failure does: --help and --version print
+// and return 0; anything else is one line, "whisker: ...", and kUsageError.
+int parse_failure(const CLI::ParseError& e, const CLI::App& app);
 
 }  // namespace whisker

@@ -72,8 +72,7 @@ int run_merge(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kUsageError;
+    return parse_failure(e, app);
   }
   if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);
   try {
