@@ -30,7 +30,7 @@ std::vector<Ray> read_rays(const std::string& path) {
 }
 
 std::vector<Triangle> load_cat(const std::string& path) {
-  const TriangleMesh m = load_obj(path, 0.6f, vec3(0.0f, -10.0f, 0.0f));
+  const TriangleMesh m = load_obj(path, 0.6f, glm::dvec3(0.0, -10.0, 0.0));
   std::vector<Triangle> tris;
   tris.reserve(m.triangles.size());
   for (const auto& t : m.triangles)

@@ -32,21 +32,21 @@ TEST(SceneFiles, BundledScenesHoldTheReportsNumbers) {
                            "antialiased-ball"}) {
     const Scene s = load_scene(resolve_scene(name));
     EXPECT_EQ(s.name, name);
-    EXPECT_EQ(s.camera.position, vec3(0, 0, 55));
+    EXPECT_EQ(s.camera.position, glm::dvec3(0, 0, 55));
     EXPECT_EQ(s.camera.width, 512);
     EXPECT_EQ(s.camera.height, 512);
     EXPECT_EQ(s.camera.fov_deg, 60.0f);
-    EXPECT_EQ(s.light.position, vec3(-10, 20, 40));
+    EXPECT_EQ(s.light.position, glm::dvec3(-10, 20, 40));
     EXPECT_EQ(s.light.intensity, 2e10f);
     EXPECT_EQ(s.settings.max_depth, 5);
     // The room: six walls as SCENES.md lists them.
     ASSERT_GE(s.spheres.size(), 7u);
-    EXPECT_EQ(s.spheres[0].center, vec3(0, 1000, 0));
+    EXPECT_EQ(s.spheres[0].center, glm::dvec3(0, 1000, 0));
     EXPECT_EQ(s.spheres[0].radius, 940.0f);
     EXPECT_EQ(s.spheres[0].material.albedo, vec3(1, 0, 0));
     EXPECT_EQ(s.spheres[1].radius, 990.0f);
     EXPECT_EQ(s.spheres[1].material.albedo, vec3(0, 0, 1));
-    EXPECT_EQ(s.spheres[2].center, vec3(0, 0, -1000));
+    EXPECT_EQ(s.spheres[2].center, glm::dvec3(0, 0, -1000));
     EXPECT_EQ(s.spheres[2].material.albedo, vec3(0, 1, 0));
     EXPECT_EQ(s.spheres[3].material.albedo, vec3(1, 0, 1));
     EXPECT_EQ(s.spheres[4].material.albedo, vec3(0, 1, 1));
@@ -56,7 +56,7 @@ TEST(SceneFiles, BundledScenesHoldTheReportsNumbers) {
   EXPECT_TRUE(f.settings.fresnel);
   EXPECT_EQ(f.settings.target_spp, 1024);
   EXPECT_EQ(f.spheres[6].material.kind, MaterialKind::Mirror);
-  EXPECT_EQ(f.spheres[6].center, vec3(-20, 0, 0));
+  EXPECT_EQ(f.spheres[6].center, glm::dvec3(-20, 0, 0));
   EXPECT_EQ(f.spheres[7].material.kind, MaterialKind::Glass);
   EXPECT_EQ(f.spheres[7].material.ior, 1.5f);
   EXPECT_EQ(f.spheres[8].material.kind, MaterialKind::HollowGlass);

@@ -100,7 +100,7 @@ TEST(CameraControl, OrbitKeepsDistanceAndTarget) {
   const float r = glm::length(c.position - c.look_at);
   orbit(c, 0.7f, -0.3f);
   EXPECT_NEAR(glm::length(c.position - c.look_at), r, 1e-3f * r);
-  EXPECT_EQ(c.look_at, vec3(0.0f));
+  EXPECT_EQ(c.look_at, glm::dvec3(0.0));
   EXPECT_GT(std::fabs(c.position.x), 1.0f);
   EXPECT_GT(c.position.y, 1.0f);  // dragging up-screen lifts the eye (dy < 0)
 }
@@ -108,14 +108,14 @@ TEST(CameraControl, OrbitKeepsDistanceAndTarget) {
 TEST(CameraControl, OrbitStopsBeforeThePole) {
   Camera c;
   orbit(c, 0.0f, -10.0f);  // far past straight above
-  const vec3 dir = glm::normalize(c.position - c.look_at);
+  const vec3 dir = vec3(glm::normalize(c.position - c.look_at));
   EXPECT_LT(glm::dot(dir, vec3(0, 1, 0)), std::cos(glm::radians(0.5f)));
   EXPECT_GT(glm::dot(dir, vec3(0, 1, 0)), std::cos(glm::radians(1.5f)));
 }
 
 TEST(CameraControl, PanFollowsTheMouse) {
   Camera c;  // at (0,0,55) looking at the origin, 60 degrees over 512 px
-  const vec3 view = c.look_at - c.position;
+  const glm::dvec3 view = c.look_at - c.position;
   pan(c, 10.0f, 0.0f);
   // Dragging right moves the eye left by 10 pixels' worth at the target.
   const float per_px = 2.0f * 55.0f * std::tan(glm::radians(30.0f)) / 512.0f;
@@ -187,9 +187,9 @@ TEST(InputMapping, LeftDragOnTheImageOrbits) {
   in.dx = 50.0f;
   mouse.update(c, in, 1.0f);
   EXPECT_NE(c.position.x, 0.0f);
-  EXPECT_EQ(c.look_at, vec3(0.0f));  // orbit keeps the target
+  EXPECT_EQ(c.look_at, glm::dvec3(0.0));  // orbit keeps the target
   // After the release the same motion does nothing.
-  const vec3 after = c.position;
+  const glm::dvec3 after = c.position;
   in.down[0] = false;
   mouse.update(c, in, 1.0f);
   EXPECT_EQ(c.position, after);

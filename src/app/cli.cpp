@@ -284,8 +284,11 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
 std::string apply_command_line(const CommandLine& cl, Scene& scene) {
   for (const SettingField* f : cl.given) copy_field(*f, cl.settings, scene.settings);
   if (!cl.light.empty()) {
-    const auto v = parse_vec3(cl.light);
+    const auto v = parse_point(cl.light);
     if (!v) return "--light " + cl.light + ": expected three finite numbers x,y,z";
+    for (int a = 0; a < 3; ++a)
+      if (!(std::fabs((*v)[a]) <= kMaxCoordinate))
+        return "--light " + cl.light + ": coordinates must be in [-1e7, 1e7]";
     scene.light.position = *v;
   }
   if (cl.intensity) scene.light.intensity = *cl.intensity;

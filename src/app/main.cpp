@@ -45,7 +45,7 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   v.screenshot_path = cl.screenshot;
   if (!cl.screenshot.empty() && cl.frames <= 0) return usage_error("--screenshot needs --frames N");
   if (cl.edit_after >= 0 || !cl.edit_light.empty()) {
-    const auto p = parse_vec3(cl.edit_light);
+    const auto p = parse_point(cl.edit_light);
     if (cl.edit_after < 0 || !p)
       return usage_error("--edit-after K and --edit-light x,y,z go together");
     v.edits.push_back(ScriptedEdit{cl.edit_after, *p});

@@ -20,7 +20,7 @@ namespace whisker {
 inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng, const vec3& ns,
                          std::uint64_t& rays, float& weight) {
   constexpr float kPi = 3.14159265358979323846f;
-  const PointLight& light = world.light();
+  const World::Light& light = world.light();
   const vec3 to_light = light.position - h.p;
   const float d2 = glm::dot(to_light, to_light);
   const float inv_d = 1.0f / std::sqrt(d2);

@@ -87,9 +87,13 @@ vec3 trace(const World& world, const RenderSettings& settings, const Ray& start,
 
 vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
               PathStats& stats) {
+  return radiance_from_render(world, settings, world.to_render(ray), sampler, stats);
+}
+
+vec3 radiance_from_render(const World& world, const RenderSettings& settings, const Ray& ray,
+                          Sampler& sampler, PathStats& stats) {
   const FlushDenormals ftz;
-  const Ray r = world.to_render(ray);
-  return trace(world, settings, r, vec3(1.0f), 0, 0, sampler, stats);
+  return trace(world, settings, ray, vec3(1.0f), 0, 0, sampler, stats);
 }
 
 vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
@@ -106,7 +110,9 @@ vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam
     dx = r * c;
     dy = r * s;
   }
-  return radiance(world, scene.settings, cam.ray(i, j, dx, dy), sampler, stats);
+  return radiance_from_render(world, scene.settings,
+                              world.to_render(cam.origin, cam.direction(i, j, dx, dy)), sampler,
+                              stats);
 }
 
 }  // namespace whisker

@@ -18,11 +18,14 @@ struct PathStats {
   std::uint64_t rays = 0;  // intersection and shadow rays traced
 };
 
-// Radiance arriving along `ray` (the world's light intensity applied), with
+// Radiance arriving along the world-space `ray` (the world's light intensity applied), with
 // at most settings.max_depth hits after the first. The ray is unbounded:
 // only its origin and direction are used.
 vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
               PathStats& stats);
+// The same for a ray already in the world's render space (World::to_render).
+vec3 radiance_from_render(const World& world, const RenderSettings& settings, const Ray& ray,
+                          Sampler& sampler, PathStats& stats);
 
 // One sample of pixel (i, j): camera ray (with Gaussian jitter when AA is on)
 // and its radiance. `world` is built from `scene`.

@@ -92,20 +92,26 @@ class Fields {
   std::string string(const char* key, const std::string& fallback) const {
     return has(key) ? string(key) : fallback;
   }
-  vec3 vector(const char* key, double lo, double hi) const {
+  // Three numbers in [lo, hi], as written (double): positions.
+  glm::dvec3 point(const char* key, double lo, double hi) const {
     const json& v = at(key);
     if (!v.is_array() || v.size() != 3)
       fail(field(key), "must be an array of 3 numbers, got " + type(v));
-    vec3 out;
+    glm::dvec3 out;
     for (int i = 0; i < 3; ++i) {
       const std::string f = field(key) + "[" + std::to_string(i) + "]";
       if (!v[i].is_number()) fail(f, "must be a number, got " + type(v[i]));
       const double x = v[i].get<double>();
       check_range(f, x, lo, hi);
-      out[i] = float(x);
+      out[i] = x;
     }
     return out;
   }
+  glm::dvec3 point(const char* key, double lo, double hi, const glm::dvec3& fallback) const {
+    return has(key) ? point(key, lo, hi) : fallback;
+  }
+  // The same rounded to float: colours, directions.
+  vec3 vector(const char* key, double lo, double hi) const { return vec3(point(key, lo, hi)); }
   vec3 vector(const char* key, double lo, double hi, vec3 fallback) const {
     return has(key) ? vector(key, lo, hi) : fallback;
   }

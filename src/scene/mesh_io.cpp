@@ -139,7 +139,7 @@ double written_value(float x) {
 
 }  // namespace
 
-TriangleMesh load_obj(const std::string& path, float scale, const vec3& translate) {
+TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, "cannot open file");
   std::ostringstream buf;
@@ -177,8 +177,7 @@ TriangleMesh load_obj(const std::string& path, float scale, const vec3& translat
   mesh.positions.resize(nv);
   mesh.exact.resize(nv);
   const double sc = written_value(scale);
-  const glm::dvec3 tr(written_value(translate.x), written_value(translate.y),
-                      written_value(translate.z));
+  const glm::dvec3 tr = translate;  // double, as the scene file wrote it
   for (std::size_t i = 0; i < nv; ++i) {
     glm::dvec3& x = mesh.exact[i];
     for (int k = 0; k < 3; ++k) x[k] = std::fma(s.coords[3 * i + k], sc, tr[k]);

@@ -16,6 +16,6 @@ struct MeshError : std::runtime_error {
 
 // Loads an OBJ file (polygons triangulated, negative indices allowed, missing
 // material library a warning), applies p' = p * scale + translate.
-TriangleMesh load_obj(const std::string& path, float scale, const vec3& translate);
+TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate);
 
 }  // namespace whisker

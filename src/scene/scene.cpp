@@ -1,6 +1,9 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
 
 namespace whisker {
 
@@ -12,5 +15,11 @@ constexpr EnumName<MaterialKind> kMaterials[] = {{MaterialKind::Diffuse, "diffus
 }  // namespace
 
 std::span<const EnumName<MaterialKind>> enum_names(MaterialKind) { return kMaterials; }
+
+vec3 view_direction(const Camera& camera) {
+  const glm::dvec3 d = camera.look_at - camera.position;
+  const double m = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  return vec3(glm::normalize(d / m));
+}
 
 }  // namespace whisker

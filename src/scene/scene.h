@@ -15,6 +15,12 @@
 namespace whisker {
 
 using glm::vec3;
+// Positions in a scene are kept in double as read: the file may place a
+// small scene far from the origin (a 1e-3 room at 1e4), where float would
+// round every coordinate by more than the room's details. World moves them
+// to camera-relative float render space (world.h), which is where float is
+// enough.
+using glm::dvec3;
 
 // The report's four surface kinds. Hollow glass is a glass shell with an air
 // bubble: two glass spheres, the inner one with its normal inverted (report
@@ -31,7 +37,7 @@ struct Material {
 
 struct SphereObject {
   std::string name;
-  vec3 center{0.0f};
+  dvec3 center{0.0};
   float radius = 1.0f;
   float inner_radius = 0.0f;  // hollow glass: radius of the air bubble
   Material material;
@@ -43,7 +49,7 @@ struct MeshObject {
   std::string name;
   std::string path;     // as written in the scene file
   float scale = 1.0f;   // applied first
-  vec3 translate{0.0f};  // then this
+  dvec3 translate{0.0};  // then this
   bool vertex_normals = false;  // shade with the file's normals (else flat)
   Material material;
   // Loaded, scaled and translated triangles; shared between scene copies.
@@ -51,15 +57,15 @@ struct MeshObject {
 };
 
 struct PointLight {
-  vec3 position{-10.0f, 20.0f, 40.0f};
+  dvec3 position{-10.0, 20.0, 40.0};
   float intensity = 2e10f;
 
   bool operator==(const PointLight&) const = default;
 };
 
 struct Camera {
-  vec3 position{0.0f, 0.0f, 55.0f};
-  vec3 look_at{0.0f, 0.0f, 0.0f};
+  dvec3 position{0.0, 0.0, 55.0};
+  dvec3 look_at{0.0, 0.0, 0.0};
   vec3 up{0.0f, 1.0f, 0.0f};
   float fov_deg = 60.0f;  // across the image width
   int width = 512;
@@ -80,5 +86,15 @@ struct Scene {
 };
 
 std::span<const EnumName<MaterialKind>> enum_names(MaterialKind);
+
+// The largest coordinate a scene position may have (scene files, --light).
+// Render space is relative to the camera (world.h), so what limits this is
+// the distance across the scene in float, not the offset from the origin.
+constexpr double kMaxCoordinate = 1e7;
+
+// The unit vector from the camera towards look_at, computed in double and
+// scaled before normalising, so that any two distinct positions give a
+// finite direction (look_at != position).
+vec3 view_direction(const Camera& camera);
 
 }  // namespace whisker

@@ -21,7 +21,7 @@ using nlohmann::json;
 
 namespace {
 
-constexpr double kBig = 1e7;  // coordinates beyond this lose float precision
+constexpr double kBig = kMaxCoordinate;
 
 Material read_material(const Fields& f) {
   f.only({"type", "albedo", "ior"});
@@ -43,8 +43,8 @@ Material read_material(const Fields& f) {
 
 void read_camera(const Fields& c, Camera& cam) {
   c.only({"position", "look_at", "up", "fov", "width", "height"});
-  cam.position = c.vector("position", -kBig, kBig, cam.position);
-  cam.look_at = c.vector("look_at", -kBig, kBig, cam.look_at);
+  cam.position = c.point("position", -kBig, kBig, cam.position);
+  cam.look_at = c.point("look_at", -kBig, kBig, cam.look_at);
   if (c.has("up")) cam.up = c.direction("up");
   cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
   cam.width = int(c.integer("width", 1, 16384, cam.width));
@@ -55,9 +55,9 @@ void read_camera(const Fields& c, Camera& cam) {
   if ((long long)cam.width * cam.height > kMaxPixels)
     c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                                  " pixels is more than 4096 x 4096");
-  const vec3 fwd = cam.look_at - cam.position;
-  if (fwd == vec3(0.0f)) c.fail(c.field("look_at"), "must differ from camera.position");
-  const vec3 side = glm::cross(fwd, cam.up);
+  // As the camera frame will compute them (camera.h).
+  if (cam.look_at == cam.position) c.fail(c.field("look_at"), "must differ from camera.position");
+  const vec3 side = glm::cross(view_direction(cam), cam.up);
   if (side == vec3(0.0f)) c.fail(c.field("up"), "must not be parallel to the view direction");
 }
 
@@ -146,7 +146,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   if (top.has("light")) {
     Fields l = top.object("light");
     l.only({"position", "intensity"});
-    scene.light.position = l.vector("position", -kBig, kBig, scene.light.position);
+    scene.light.position = l.point("position", -kBig, kBig, scene.light.position);
     scene.light.intensity = float(l.number("intensity", 0.0, 1e30, scene.light.intensity));
   }
   if (top.has("settings")) read_settings(top.object("settings"), scene.settings);
@@ -158,7 +158,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       f.only({"name", "center", "radius", "inner_radius", "material"});
       SphereObject s;
       s.name = f.string("name", "sphere " + std::to_string(i));
-      s.center = f.vector("center", -kBig, kBig);
+      s.center = f.point("center", -kBig, kBig);
       const json& rv = f.at("radius");
       if (rv.is_number() && rv.get<double>() <= 0.0) f.fail(f.field("radius"), "must be positive");
       s.radius = float(f.number("radius", 1e-6, kBig));
@@ -183,7 +183,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       m.path = f.string("path");
       m.name = f.string("name", fs::path(m.path).stem().string());
       m.scale = float(f.number("scale", 1e-6, kBig, 1.0));
-      m.translate = f.vector("translate", -kBig, kBig, vec3(0.0f));
+      m.translate = f.point("translate", -kBig, kBig, glm::dvec3(0.0));
       m.vertex_normals = f.boolean("vertex_normals", false);
       m.material = f.has("material") ? read_material(f.object("material")) : Material{};
       if (m.material.kind == MaterialKind::HollowGlass)
@@ -222,6 +222,7 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
 
 namespace {
 json to_json(const vec3& v) { return json::array({v.x, v.y, v.z}); }
+json to_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 json to_json(const Material& m) {
   json j = {{"type", to_string(m.kind)}};
   if (m.kind == MaterialKind::Diffuse) j["albedo"] = to_json(m.albedo);

@@ -106,8 +106,16 @@ const SettingField& setting_field(std::string_view key) {
 }
 
 std::optional<vec3> parse_vec3(std::string_view text) {
+  const auto v = parse_point(text);
+  if (!v) return std::nullopt;
+  const vec3 f(*v);
+  if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(f.z)) return std::nullopt;
+  return f;
+}
+
+std::optional<glm::dvec3> parse_point(std::string_view text) {
   std::istringstream in{std::string(text)};
-  vec3 v;
+  glm::dvec3 v;
   char c1 = 0, c2 = 0;
   if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',') return std::nullopt;
   in >> std::ws;

@@ -119,6 +119,8 @@ void copy_field(const SettingField& f, const RenderSettings& from, RenderSetting
 
 // "x,y,z" -> three finite numbers, or nullopt.
 std::optional<vec3> parse_vec3(std::string_view text);
+// The same in double (positions).
+std::optional<glm::dvec3> parse_point(std::string_view text);
 
 // Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
 constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;

@@ -22,9 +22,9 @@ BvhMethod bvh_method(AccelKind k) {
 
 World::World(const Scene& scene, const World* reuse) {
   origin_ = glm::dvec3(scene.camera.position);
-  const auto here = [&](const vec3& p) { return to_render(p); };
+  const auto here = [&](const glm::dvec3& p) { return to_render(p); };
   set_light_clearance(scene);
-  light_.position = here(scene.light.position);
+  light_ = {here(scene.light.position), scene.light.intensity};
   for (const auto& s : scene.spheres) {
     const vec3 c = here(s.center);
     if (s.material.kind == MaterialKind::HollowGlass) {
@@ -124,7 +124,6 @@ void World::set_light_clearance(const Scene& scene) {
   }
   // |p - L|^2 is rounded in float (a few ULP); 1e-3 covers it many times over.
   light_clear2_ = float(clear * (1.0 - 1e-3));
-  light_ = scene.light;
 }
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {

@@ -84,11 +84,21 @@ class World {
   bool occluded(const Ray& ray) const;
   // The scene's point light, as it was when this World was built (its
   // position in render space).
-  const PointLight& light() const { return light_; }
+  struct Light {
+    vec3 position;
+    float intensity;
+  };
+  const Light& light() const { return light_; }
   // The world-space point that is render space's origin (the camera).
   const glm::dvec3& origin() const { return origin_; }
-  vec3 to_render(const vec3& world_point) const {
-    return vec3(glm::dvec3(world_point) - origin_);
+  vec3 to_render(const glm::dvec3& world_point) const { return vec3(world_point - origin_); }
+  vec3 to_render(const vec3& world_point) const { return to_render(glm::dvec3(world_point)); }
+  // The ray from the world-space point `o` along d in render space, o's
+  // remainder kept in o_lo (the camera itself maps to 0).
+  Ray to_render(const glm::dvec3& o, const vec3& d) const {
+    Ray ray{vec3(0.0f), d, 0.0f, kInf};
+    split_double(o - origin_, ray.o, ray.o_lo);
+    return ray;
   }
   // A world-space ray (a camera ray) in render space, its origin's remainder
   // kept in o_lo (the camera itself maps to 0).
@@ -144,7 +154,7 @@ class World {
   // report's room it is about 196^2, and no point of the room is that far
   // from the light: shadow rays there never test the six wall spheres.
   float light_clear2_ = 0.0f;
-  PointLight light_;  // the scene light (light_clear2_ is computed for it)
+  Light light_;  // the scene light in render space (light_clear2_ is computed for it)
   glm::dvec3 origin_{0.0};
 };
 

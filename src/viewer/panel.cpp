@@ -111,9 +111,14 @@ static void scene_section(ViewerState& s, PanelRequests& req) {
   tip("Load the scene file named in 'path'.");
 }
 
+// Three doubles (scene positions are double, scene.h), dragged or typed.
+static void drag_position(const char* label, double* xyz) {
+  ImGui::DragScalarN(label, ImGuiDataType_Double, xyz, 3, 0.25f, nullptr, nullptr, "%.2f");
+}
+
 static void light_section(PointLight& light) {
   if (!ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::DragFloat3("position", &light.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  drag_position("position", &light.position.x);
   tip("Where the point light is (x, y, z in scene units). Drag a number sideways, "
       "or double-click it to type; a typed value applies on Enter.");
   ImGui::DragFloat("intensity", &light.intensity, light.intensity * 0.005f + 1.0f,
@@ -214,9 +219,9 @@ static void bookmarks(const ViewerState& s, PanelRequests& req) {
 static void camera_section(ViewerState& s, PanelRequests& req) {
   Camera& camera = s.edited.camera;
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::DragFloat3("eye", &camera.position.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  drag_position("eye", &camera.position.x);
   tip("Camera position (x, y, z). Or left-drag on the image to orbit.");
-  ImGui::DragFloat3("look at", &camera.look_at.x, 0.25f, 0.0f, 0.0f, "%.2f");
+  drag_position("look at", &camera.look_at.x);
   tip("The point the camera looks at and orbits around.");
   ImGui::SliderFloat("fov (deg)", &camera.fov_deg, 5.0f, 150.0f, "%.1f");
   tip("Field of view in degrees: smaller zooms in.");

@@ -15,7 +15,7 @@ namespace whisker {
 // runs and tests drive the UI path with these).
 struct ScriptedEdit {
   int after_pass = 0;
-  std::optional<glm::vec3> light_position;
+  std::optional<glm::dvec3> light_position;
 };
 
 struct ViewerOptions {

@@ -4,7 +4,8 @@
 Each case builds scene files, renders them with `whisker --headless`, and
 checks the image against one of:
   - an invariance: the same scene moved (to 1e6) or scaled (1e-5 to 1e4, the
-    light's intensity by the square) must render the same image;
+    light's intensity by the square), or scaled down and moved far, must
+    render the same image;
   - a closed form: a closed room with the light outside is black;
   - a double-precision reference: a small direct-light tracer below, for
     diffuse spheres and planes lit by the point light (report section 1:
@@ -341,6 +342,26 @@ def case_scale(run):
             yield (f"{name} scaled by {k:g}", n <= 20, f"{n} of 4096 pixels differ (allowed 20)")
 
 
+def case_small_far(run):
+    """A small scene far from the origin: scaled down, then moved by an offset
+    of 1e6 to 1e7 times its size, and moved by an offset that no float holds
+    (123456.789): the same image as the scene scaled alone, within the seam
+    pixels that scaling itself may flip. Positions are read and kept in double
+    (scene.h), render space is relative to the camera."""
+    for name, flags in (("three-balls", []), ("three-balls-fresnel", ["--fresnel", "on"]),
+                        ("indirect", []), ("cat", ["--indirect", "off", "--aa", "off"])):
+        base = load_scene(name)
+        for k, t in ((1e-3, 1e4), (1e-4, 1e3), (1, 123456.789)):
+            small = scaled(base, k)
+            ref, _ = run.render(small, *flags, spp=4)
+            img, _ = run.render(translated(small, (t, -t, t)), *flags, spp=4)
+            n = differing_pixels(img, ref)
+            mr, mi = image_mean(ref), image_mean(img)
+            ok = n <= 4 and abs(mi - mr) <= 1e-3 * mr
+            yield (f"{name} scaled by {k:g}, moved by {t:g}", ok,
+                   f"{n} of 4096 pixels differ (allowed 4); mean {mi:.6g} against {mr:.6g}")
+
+
 def case_thin_shell(run):
     """A hollow glass ball whose shell thins to 1e-6 converges to the same
     image as a 1e-2 shell (a thin parallel shell displaces rays by about its
@@ -576,6 +597,7 @@ def case_extreme_glass(run):
 CASES = {
     "offset": case_offset,
     "scale": case_scale,
+    "small-far": case_small_far,
     "thin-shell": case_thin_shell,
     "tiny-ball": case_tiny_ball,
     "light-on-surface": case_light_on_surface,
