@@ -104,6 +104,7 @@ struct SettingField {
   // The command line's own upper bound where it is tighter (0: `hi`).
   double option_hi = 0.0;
   const char* example = "";  // a valid command-line value, for messages
+  const char* label = nullptr;  // the viewer's checkbox, where not the key
 };
 
 // Every render setting, in scene-file order.

@@ -58,7 +58,7 @@ static void setting_checkboxes(RenderSettings& r) {
   for (const SettingField& f : setting_fields()) {
     if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
       if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
-      ImGui::Checkbox(f.key, &(r.*(*m)));
+      ImGui::Checkbox(f.label ? f.label : f.key, &(r.*(*m)));
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
     }
   }

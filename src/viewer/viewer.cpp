@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <numeric>
 #include <string>
 
@@ -32,6 +33,8 @@
 namespace whisker {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
 
@@ -295,11 +298,20 @@ struct Session {
   }
 };
 
+// A path as the panel shows it: relative to the working folder when it lies
+// inside it ("assets/scenes/cat.json"), else as given.
+std::string shown_path(const std::string& path) {
+  std::error_code ec;
+  const fs::path rel = fs::proximate(path, ec);
+  if (ec || rel.empty() || *rel.begin() == "..") return path;
+  return rel.string();
+}
+
 // The panel's state for the scene given on the command line.
 void init_state(ViewerState& s, const ViewerOptions& opt) {
   s.initial = s.applied = s.edited = opt.scene;
   s.scene_label = scene_label_of(opt.scene, opt.scene_path);
-  s.path_field = opt.scene_path;
+  s.path_field = shown_path(opt.scene_path);
   s.scene_path = opt.scene_path;
   try {
     s.scene_names = list_scenes();
@@ -338,6 +350,9 @@ int run_viewer(const ViewerOptions& opt) {
     return 1;
   }
   const ImGuiSession imgui(window.handle());
+  // A scripted screenshot shows the panel as it is, not a tooltip under
+  // wherever the pointer happens to rest.
+  if (!opt.screenshot_path.empty()) ImGui::GetIO().ConfigFlags |= ImGuiConfigFlags_NoMouse;
 
   ViewerState s;
   init_state(s, opt);
