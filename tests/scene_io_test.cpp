@@ -236,3 +236,20 @@ TEST(SettingsTable, EnumNamesRoundTrip) {
   EXPECT_FALSE(parse("halton", s));
   EXPECT_EQ(s, SamplerKind::Sobol);
 }
+
+TEST(SceneFiles, PositionsKeepTheDigitsTheFileWrote) {
+  // 1000.0001 is not a float (the nearest is 1000.00012207...): the reader
+  // keeps positions in double, and writing them back loses nothing.
+  const Scene s = parse_scene(R"({"camera": {"position": [1000.0001, -999.9999, 123456.789], "look_at": [1000, -1000, 123456]},
+    "light": {"position": [1000.00005, 0, 0]},
+    "spheres": [{"center": [1000.0000001, 0, 0], "radius": 1e-4, "material": {"type": "diffuse"}}]})",
+                              "digits.json");
+  EXPECT_EQ(s.camera.position, glm::dvec3(1000.0001, -999.9999, 123456.789));
+  EXPECT_EQ(s.light.position.x, 1000.00005);
+  EXPECT_EQ(s.spheres[0].center.x, 1000.0000001);
+  const Scene back = parse_scene(scene_to_json(s), "roundtrip.json");
+  EXPECT_EQ(back.camera.position, s.camera.position);
+  EXPECT_EQ(back.camera.look_at, s.camera.look_at);
+  EXPECT_EQ(back.light.position, s.light.position);
+  EXPECT_EQ(back.spheres[0].center, s.spheres[0].center);
+}
