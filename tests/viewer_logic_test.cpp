@@ -22,6 +22,7 @@
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/scene_diff.h"
+#include "render_util.h"
 
 using namespace whisker;
 
@@ -286,13 +287,7 @@ TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
   EXPECT_TRUE(more.done);
 
   s.settings.target_spp = 10;
-  ProgressiveRenderer fresh(2);
-  const std::uint64_t g2 = fresh.set_scene(s);
-  fresh.start();
-  ASSERT_TRUE(fresh.wait_for(g2, 10));
-  Snapshot ref;
-  fresh.snapshot(ref);
-  fresh.stop();
+  const Snapshot ref = render(s, 2);  // the same target from the start
   EXPECT_EQ(more.sum, ref.sum);
   EXPECT_EQ(more.sum_sq, ref.sum_sq);
 }
