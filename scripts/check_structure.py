@@ -112,9 +112,17 @@ def main():
         if allowed is None:
             continue
         for n, l in enumerate(text.splitlines(), 1):
-            m = re.match(r'\s*#\s*include\s*"([^/"]+)/', l)
-            if m and m.group(1) in LAYERS and m.group(1) not in allowed:
-                problems.append(f"{rel}:{n}: {layer} includes {m.group(1)}/ (allowed: "
+            m = re.match(r'\s*#\s*include\s*["<]([^">]+)[">]', l)
+            if not m:
+                continue
+            target = m.group(1)
+            if target.startswith("."):  # relative: where it lands in src
+                landed = (f.parent / target).resolve()
+                if src.resolve() in landed.parents:
+                    target = landed.relative_to(src.resolve()).as_posix()
+            used = target.split("/")[0]
+            if used in LAYERS and used not in allowed:
+                problems.append(f"{rel}:{n}: {layer} includes {used}/ (allowed: "
                                 f"{', '.join(sorted(allowed))})")
     for p in problems:
         print(p)

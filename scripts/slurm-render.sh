@@ -39,7 +39,7 @@ cat >"$parts/merge.sbatch" <<JOB
 #!/usr/bin/env bash
 #SBATCH --job-name=whisker-merge
 #SBATCH --output=$parts/merge.log
-exec "$whisker" merge ${files[*]} --out "$out" --out "${out%.exr}.png"
+exec "$whisker" merge $(printf '%q ' "${files[@]}")--out "$out" --out "${out%.exr}.png"
 JOB
 
 array=$(sbatch --parsable "${sbatch_args[@]}" --array="0-$((tasks - 1))" "$parts/part.sbatch")

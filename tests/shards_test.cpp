@@ -138,12 +138,30 @@ TEST_F(Shards, BadMergesAndResumesAreRefusedNamingFilesAndField) {
   render("--spp 2 --samples 4:6 --out-sum " + f("later.exr"));
   render("--spp 2 --samples 2:4 --seed 7 --out-sum " + f("seed7.exr"));
   render("--spp 2 --samples 2:4 --light 0,30,40 --out-sum " + f("light.exr"));
+  {  // the same room under another name: another scene
+    std::ifstream in(scene);
+    nlohmann::json j = nlohmann::json::parse(in);
+    j["name"] = "other-room";
+    std::ofstream(dir / "other.json") << j.dump(2);
+  }
+  const Result other = run("--headless --quiet --threads 2 --scene " + f("other.json") +
+                           " --spp 2 --samples 2:4 --out-sum " + f("other.exr"));
+  ASSERT_EQ(other.code, 0) << other.output;
+  {  // a part cut short (a copy that did not finish, a full disk)
+    const std::string whole = bytes(f("a.exr"));
+    std::ofstream(f("cut.exr"), std::ios::binary) << whole.substr(0, whole.size() / 2);
+  }
+  fs::copy_file(f("a.exr"), f("a-copy.exr"));
   struct Case {
     std::string args, expect1, expect2;
   };
   const Case cases[] = {
       {f("a.exr") + " " + f("seed7.exr"), "seed7.exr", "settings.seed: 0 vs 7"},
       {f("a.exr") + " " + f("light.exr"), "light.exr", "scene file or meshes"},
+      {f("a.exr") + " " + f("other.exr"), "scene: \"indirect\" vs \"other-room\"", "other.exr"},
+      {f("a.exr") + " " + f("cut.exr"), "cut.exr", "cannot read as OpenEXR"},
+      {f("a.exr") + " " + f("a.exr"), "0:2 of " + f("a.exr"), "overlap"},
+      {f("a.exr") + " " + f("a-copy.exr"), "0:2 of " + f("a-copy.exr"), "overlap"},
       {f("a.exr") + " " + f("over.exr"), "0:2 of " + f("a.exr"), "1:3 of " + f("over.exr")},
       {f("a.exr") + " " + f("later.exr"), "samples 2:4 are missing", "--partial"},
       {f("a.exr") + " " + f("nothere.exr"), "nothere.exr", "no such file"},
