@@ -62,8 +62,8 @@ TEST(Progress, NoTargetNoEtaAndNothingDoneNoRate) {
 
 TEST(Progress, DurationsReadAsTime) {
   EXPECT_EQ(format_duration(12.34), "12.3 s");
-  EXPECT_EQ(format_duration(185.0), "3 min 05 s");
-  EXPECT_EQ(format_duration(3720.0), "1 h 02 min");
+  EXPECT_EQ(format_duration(185.0), "3m 05s");
+  EXPECT_EQ(format_duration(3720.0), "1h 02m");
   EXPECT_EQ(format_duration(-1.0), "-");
 }
 

@@ -10,6 +10,7 @@
 #include "render/film.h"
 #include "render/image_io.h"
 #include "scene/scene_io.h"
+#include "scene/settings_json.h"
 #include "viewer/display.h"
 #include "viewer/readout.h"
 #include "viewer/scene_diff.h"
@@ -131,11 +132,7 @@ void Controller::save_scene() {
 
 void Controller::load(const std::string& name_or_path, double now, bool confirmed,
                       const std::string& mesh) {
-  if (!confirmed && s.history.can_undo()) {
-    s.pending_load = name_or_path;  // the panel asks first
-    s.pending_mesh = mesh;
-    return;
-  }
+  const bool ask = !confirmed && s.history.can_undo();
   s.pending_load.clear();
   s.pending_mesh.clear();
   try {
@@ -143,6 +140,13 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     Scene scene = load_scene(path, mesh);
     if (!mesh.empty() && scene.meshes.empty())
       throw std::runtime_error(path.string() + " has no mesh to replace with " + mesh);
+    if (ask) {
+      // The file loads: now the panel asks before the edits go. (A file
+      // that does not load says so at once and keeps the edits unasked.)
+      s.pending_load = name_or_path;
+      s.pending_mesh = mesh;
+      return;
+    }
     s.initial = scene;
     s.edited = scene;
     s.applied = scene;
@@ -158,6 +162,24 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     s.message = e.what();
     s.message_is_error = true;
   }
+}
+
+ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool display_units) {
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.3f", sn.seconds);
+  const nlohmann::json light{
+      {"position", {scene.light.position.x, scene.light.position.y, scene.light.position.z}},
+      {"intensity", scene.light.intensity}};
+  return {{"whisker.scene", scene.name},
+          {"whisker.units", display_units ? "display: 1.0 = 255^2.2 radiance, the report's white"
+                                          : "scene: radiance, light intensity applied"},
+          {"whisker.spp", std::to_string(sn.spp)},
+          {"whisker.passes", std::to_string(sn.passes)},
+          {"whisker.seed", std::to_string(scene.settings.seed)},
+          {"whisker.seconds", seconds},
+          {"whisker.camera", nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump()},
+          {"whisker.light", light.dump()},
+          {"whisker.settings", settings_to_json(scene.settings).dump()}};
 }
 
 void Controller::save() {
@@ -185,12 +207,19 @@ void Controller::save() {
     const Snapshot& shown = debug ? s.debug.image : sn;
     write_png_rgb8(base + ".png", shown.width, shown.height, rgb);
     const Image img = mean_image(sn);
-    write_float_image(base + float_ext, img);
-    s.message = "saved " + base + ".png (as shown) and " + base + float_ext + " (radiance)";
-    if (stem != wanted) s.message += "; " + wanted + " was taken, so the name is " + stem;
-    s.message_is_error = false;
-    std::printf("%s\n", s.message.c_str());
+    const bool display_units = s.save_display_units;
+    write_float_image(base + float_ext, display_units ? display_referred(img) : img,
+                      render_record(s.applied, sn, display_units));
+    const char* units = display_units ? " (display units: 1.0 = white)" : " (radiance)";
+    std::string said = "saved " + base + ".png (as shown) and " + base + float_ext + units;
+    if (stem != wanted) said += "; " + wanted + " was taken, so the name is " + stem;
+    std::printf("%s\n", said.c_str());
     std::fflush(stdout);
+    // The panel's two lines: the file names, then the folder (the tooltip
+    // and stdout have the whole line).
+    s.message = "saved " + stem + ".png (as shown) and " + float_ext + units +
+                (stem != wanted ? "; " + wanted + " was taken" : std::string()) + ", in " + dir;
+    s.message_is_error = false;
   } catch (const std::exception& e) {
     s.message = std::string("save failed: ") + e.what();
     s.message_is_error = true;

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "render/image_io.h"
 #include "render/progressive.h"
 #include "scene/scene.h"
 #include "viewer/viewer_state.h"
@@ -24,6 +25,11 @@ bool only_target_raised(const Scene& applied, const Scene& edited);
 // cannot change, so nothing restarts.
 bool only_idle_fresnel(const Scene& applied, const Scene& edited);
 
+// What a saved float image records in its EXR header (as the headless
+// --out-float): scene, units, spp, passes, seed, render time, camera, light
+// and settings, as whisker.* string attributes.
+ImageAttributes render_record(const Scene& scene, const Snapshot& snap, bool display_units);
+
 struct Controller {
   ProgressiveRenderer& renderer;
   ViewerState& s;
@@ -44,8 +50,9 @@ struct Controller {
   // `confirmed`.
   void load(const std::string& name_or_path, double now, bool confirmed = false,
             const std::string& mesh = {});
-  // Writes the image as shown (PNG) and its radiance (EXR, or PFM) into
-  // s.save_dir, under a name that overwrites nothing.
+  // Writes the image as shown (PNG) and its radiance (EXR, or PFM; in
+  // display units if s.save_display_units) into s.save_dir, under a name
+  // that overwrites nothing.
   void save();
   // Keeps the current image for the A/B comparison.
   void hold();

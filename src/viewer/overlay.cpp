@@ -25,7 +25,7 @@ void noise_legend(const ImageArea& a) {
   dl->AddRectFilled(ImVec2(p0.x - 4, p0.y - 4),
                     ImVec2(p0.x + w + 4, p0.y + bar + 2.0f * line + 6.0f),
                     IM_COL32(0, 0, 0, 190), 3.0f);
-  dl->AddText(p0, IM_COL32(230, 230, 230, 255), "rel. std. error per pixel");
+  dl->AddText(p0, IM_COL32(230, 230, 230, 255), "noise per pixel (error / mean)");
   const float y0 = p0.y + line + 2.0f;
   const int steps = 48;
   for (int k = 0; k < steps; ++k) {

@@ -77,18 +77,26 @@ void progress_lines(const ViewerState& s) {
   const auto& pr = s.progress;
   const bool in_pass = pr.rendering && pr.generation == s.generation && !s.paused &&
                        pr.tiles_done < pr.tiles_total;
-  char pass[48] = "pass: -";
-  if (in_pass) std::snprintf(pass, sizeof pass, "pass: %d / %d tiles", pr.tiles_done, pr.tiles_total);
+  // Short enough for the panel's width with hours on both clocks.
+  char pass[48] = "tiles -";
+  if (in_pass) std::snprintf(pass, sizeof pass, "tiles %d/%d", pr.tiles_done, pr.tiles_total);
   ImGui::Text("%s  elapsed %s  left %s", pass, format_duration(p.elapsed).c_str(),
-              target <= 0 ? "(no target)" : format_duration(p.eta).c_str());
-  tip("A pass adds 'samples/pass' samples to every pixel, tile by tile; the image "
-      "updates when a pass ends. Time left is estimated from the rate measured so far.");
+              target <= 0 ? "-" : format_duration(p.eta).c_str());
+  tip("A pass adds 'samples/pass' samples to every pixel, tile by tile ('tiles': the "
+      "pass in flight); the image updates when a pass ends. Time left is estimated "
+      "from the rate measured so far ('-' without a target).");
   const double pixels = double(std::max(0, s.snap.width)) * std::max(0, s.snap.height);
-  const double secs = s.snap.seconds;
-  ImGui::Text("%s samples/s  %s rays/s  %.2f passes/s",
-              human(p.spp_per_second * pixels).c_str(),
-              human(secs > 0.0 ? s.snap.rays / secs : 0.0).c_str(),
-              secs > 0.0 ? s.snap.passes / secs : 0.0);
+  // Rays and passes are counted when a pass is published: until the first
+  // pass of these settings is, they are not known yet ("-"), not zero.
+  const double secs = s.snap.generation == s.generation && !s.snap.preview ? s.snap.seconds : 0.0;
+  char rays[32] = "-", passes[32] = "-";
+  if (secs > 0.0) {
+    std::snprintf(rays, sizeof rays, "%s", human(s.snap.rays / secs).c_str());
+    std::snprintf(passes, sizeof passes, "%.2f", s.snap.passes / secs);
+  }
+  ImGui::Text("%s samples/s  %s rays/s  %s passes/s",
+              p.spp_per_second > 0.0 ? human(p.spp_per_second * pixels).c_str() : "-", rays,
+              passes);
   tip("samples/s: camera samples (one per pixel per spp) per second. With splitting "
       "each sample continues as several paths (up to 16 with 4 x 4), so paths/s is "
       "higher. rays/s counts every ray traced: camera, bounce and shadow rays.");
@@ -147,10 +155,9 @@ void status_section(const ViewerState& s, double now) {
   ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s));
   progress_lines(s);
   if (std::isfinite(s.rse))
-    ImGui::Text("noise: rel. std. error %.3g %%%s", 100.0 * s.rse,
-                stale ? "  (before the edit)" : "");
+    ImGui::Text("noise: %.3g %% of the mean%s", 100.0 * s.rse, stale ? "  (before the edit)" : "");
   else
-    ImGui::Text("noise: rel. std. error - (needs 2 spp)%s", stale ? "  (before the edit)" : "");
+    ImGui::Text("noise: - (needs 2 spp)%s", stale ? "  (before the edit)" : "");
   tip("Relative standard error of the image mean: how far the average brightness may "
       "still be off, from the spread of each pixel's samples. It falls as 1/sqrt(spp). "
       "'(before the edit)' means the image still shows the previous settings.");
@@ -208,6 +215,11 @@ void save_section(ViewerState& s, PanelRequests& req) {
   ImGui::InputTextWithHint("name", (s.scene_label + "-<spp>spp").c_str(), &s.save_name);
   tip("File name without extension. Empty: the scene's name and the samples per "
       "pixel. If the file exists, -2, -3, ... is added.");
+  ImGui::Checkbox("float file in display units", &s.save_display_units);
+  tip("The float image (.exr) beside the PNG: off, radiance in scene units (the cat's "
+      "are in the hundreds of thousands); on, 1.0 = the PNG's white (255^2.2 radiance), "
+      "so an HDR viewer at exposure 0 shows what the report's mapping shows. Its header "
+      "records the scene, samples, seed, camera, settings and render time.");
   if (ImGui::Button("Save scene")) req.save_scene = true;
   tip("Write the scene with your edits (objects, light, camera, settings) as a scene "
       "file (.json) into the folder: load it later with Scene > path, or "

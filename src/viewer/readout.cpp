@@ -33,10 +33,10 @@ std::string format_duration(double seconds) {
     std::snprintf(buf, sizeof buf, "%.1f s", seconds);
   } else if (seconds < 3600.0) {
     const long s = std::lround(seconds);
-    std::snprintf(buf, sizeof buf, "%ld min %02ld s", s / 60, s % 60);
+    std::snprintf(buf, sizeof buf, "%ldm %02lds", s / 60, s % 60);
   } else {
     const long m = std::lround(seconds / 60.0);
-    std::snprintf(buf, sizeof buf, "%ld h %02ld min", m / 60, m % 60);
+    std::snprintf(buf, sizeof buf, "%ldh %02ldm", m / 60, m % 60);
   }
   return buf;
 }

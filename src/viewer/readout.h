@@ -36,7 +36,7 @@ struct ProgressInput {
 
 ProgressInfo estimate_progress(const ProgressInput& in);
 
-// "1 h 02 min", "3 min 05 s", "12.3 s".
+// "1h 02m", "3m 05s", "12.3 s" (as the headless progress line).
 std::string format_duration(double seconds);
 
 // Pixel (x, y) of a snapshot: mean radiance and the standard error of its

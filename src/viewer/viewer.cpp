@@ -113,14 +113,14 @@ struct Session {
   float panel_w;  // window units
   Controller ctl{renderer, s};
   ScriptedRun script{opt};
-  MouseCamera mouse;
-  FrameStats fstats;
+  MouseCamera mouse{};
+  FrameStats fstats{};
   double next_check = 0.0;
   double last_frame = -1.0;
   std::uint64_t rse_generation = 0;
   std::uint64_t title_spp = ~0ull;
   std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
-  Scene debug_scene;                     // what s.debug shows
+  Scene debug_scene{};                   // what s.debug shows
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 

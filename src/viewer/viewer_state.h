@@ -48,6 +48,7 @@ struct ViewerState {
   std::string scene_path;  // the file the current scene came from
   std::string save_dir = ".";
   std::string save_name;  // file name without extension; empty: SCENE-Nspp
+  bool save_display_units = false;  // the float file: 1.0 = the report's white
   std::string message;  // last save / load result shown in the panel
   bool message_is_error = false;
 
