@@ -155,7 +155,7 @@ class Progress {
     } else if (elapsed >= next_line_) {
       next_line_ = elapsed + period_;
       if (elapsed < period_) return;  // nothing to say for short renders
-      std::fprintf(stderr, "%s: %.0f/%llu spp (%.0f%%), %s elapsed, eta %s\n", name_.c_str(),
+      std::fprintf(stderr, "%s: %.1f/%llu spp (%.0f%%), %s elapsed, eta %s\n", name_.c_str(),
                    done, (unsigned long long)target_, 100.0 * done / double(target_),
                    duration(elapsed).c_str(), eta.c_str());
     }
