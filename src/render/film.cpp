@@ -15,7 +15,11 @@ double Snapshot::relative_standard_error() const {
   const double* w = kLuminanceWeights;
   for (std::size_t p = 0; p < pixels; ++p) {
     const double m = (w[0] * sum[3 * p] + w[1] * sum[3 * p + 1] + w[2] * sum[3 * p + 2]) / n;
-    const double var = std::max(0.0, sum_sq[p] / n - m * m) * n / (n - 1.0);  // sample variance
+    // m comes from float sums of float samples, sum_sq from float
+    // luminances: each is known to about 2^-23 of m^2, so a smaller
+    // difference is their rounding, not variance (a noise-free image).
+    const double raw = sum_sq[p] / n - m * m;
+    const double var = raw > 0x1p-20 * m * m ? raw * n / (n - 1.0) : 0.0;  // sample variance
     var_sum += var / n;                                                     // of the mean
     mean_sum += m;
   }

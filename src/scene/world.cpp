@@ -40,6 +40,7 @@ World::World(const Scene& scene, const World* reuse) {
       sphere_material_.push_back(s.material);
     }
   }
+  set_light_cages();
   std::vector<const TriangleMesh*> sources;
   for (const auto& m : scene.meshes) {
     mesh_material_.push_back(m.material);
@@ -124,6 +125,34 @@ void World::set_light_clearance(const Scene& scene) {
   }
   // |p - L|^2 is rounded in float (a few ULP); 1e-3 covers it many times over.
   light_clear2_ = float(clear * (1.0 - 1e-3));
+}
+
+void World::set_light_cages() {
+  // Spheres holding the light strictly inside (by more than their float
+  // rounding): a shadow ray from outside one must cross it, however close to
+  // the light, where the shadow ray's margin (offset.h) would let it through.
+  const glm::dvec3 L(light_.position);
+  for (std::uint32_t k = 0; k < spheres_.size(); ++k) {
+    const Sphere& s = spheres_[k];
+    const glm::dvec3 f = L - glm::dvec3(s.center);
+    const double r = double(s.radius);
+    // The light and the centre are rounded to float in render space, the
+    // radius too: within 2^-24 of each. 4x that is "on the surface".
+    const double tol = 0x1p-22 * (glm::length(L) + glm::length(glm::dvec3(s.center)) + r);
+    if (glm::length(f) < r - tol) light_cages_.push_back(k);
+  }
+}
+
+bool World::outside_a_light_cage(const Ray& ray) const {
+  const glm::dvec3 o = exact_origin(ray);
+  for (const std::uint32_t k : light_cages_) {
+    const Sphere& s = spheres_[k];
+    if (ray.skip == k) continue;  // leaving the cage itself: its inner side, if lit
+    const glm::dvec3 f = o - glm::dvec3(s.center);
+    const double r = double(s.radius) * (1.0 + 0x1p-22);
+    if (glm::dot(f, f) > r * r) return true;
+  }
+  return false;
 }
 
 bool World::intersect(const Ray& ray, SurfaceHit& out) const {

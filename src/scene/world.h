@@ -110,6 +110,7 @@ class World {
   // dist2 = its squared length: when no sphere can stand between them (see
   // light_clear2_) only the triangles are tested. Same answer as occluded().
   bool occluded_to_light(const Ray& ray, float dist2) const {
+    if (!light_cages_.empty() && outside_a_light_cage(ray)) return true;
     if (dist2 < light_clear2_) return mesh_ && mesh_->bvh.occluded(ray);
     return occluded(ray);
   }
@@ -135,6 +136,8 @@ class World {
     Box3 bounds;  // of all triangles
   };
   void set_light_clearance(const Scene& scene);
+  void set_light_cages();
+  bool outside_a_light_cage(const Ray& ray) const;
   void build_mesh(const Scene& scene, BvhMethod method);
   void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   void record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
@@ -154,6 +157,7 @@ class World {
   // report's room it is about 196^2, and no point of the room is that far
   // from the light: shadow rays there never test the six wall spheres.
   float light_clear2_ = 0.0f;
+  std::vector<std::uint32_t> light_cages_;  // spheres holding the light strictly inside
   Light light_;  // the scene light in render space (light_clear2_ is computed for it)
   glm::dvec3 origin_{0.0};
 };

@@ -193,11 +193,15 @@ def sphere_roots(o, d, c, r):
 
 class Reference:
     """Spheres: (center, radius, albedo). Planes: (point, unit normal, albedo,
-    half-size) squares facing +normal. Pixel values in the PFM's units."""
+    half-size) squares facing +normal. Pixel values in the PFM's units.
+    shadow_only: spheres (center, radius) that camera rays pass straight
+    through but that block shadow rays: glass of index 1 without Fresnel,
+    which in the report's model bends nothing and casts a full shadow."""
 
-    def __init__(self, spheres, planes, light, intensity):
+    def __init__(self, spheres, planes, light, intensity, shadow_only=()):
         self.spheres, self.planes = spheres, planes
         self.light, self.intensity = light, intensity
+        self.shadow_only = list(shadow_only)
 
     def hit(self, o, d):
         """(t, normal, albedo, tie): tie when another surface is met within
@@ -245,7 +249,8 @@ class Reference:
         if cos <= 0:
             return (0.0, 0.0, 0.0), abs(cos) < 1e-6
         ambiguous = cos < 1e-6
-        for c, r, _ in self.spheres:  # the segment p -> light against each sphere
+        blockers = list(self.spheres) + [(c, r, None) for c, r in self.shadow_only]
+        for c, r, _ in blockers:  # the segment p -> light against each sphere
             roots = sphere_roots(p, wl, c, r)
             if roots is None:
                 continue
@@ -272,9 +277,21 @@ class Reference:
         return tuple(a * k for a in alb), ambiguous
 
     def image(self, cam):
-        """Pixel centres, as SCENES.md's camera (no anti-aliasing)."""
-        w, h = cam["width"], cam["height"]
+        """Pixel centres, as SCENES.md's camera (no anti-aliasing). Traced
+        relative to the camera (the scene moved so that the camera is at 0,
+        in double): the tolerances above are relative to the distances in
+        the scene, so a small scene far from the origin is traced as well as
+        one at the origin."""
         pos = tuple(cam["position"])
+        if any(pos):
+            rel = copy.copy(self)
+            rel.spheres = [(sub(c, pos), r, a) for c, r, a in self.spheres]
+            rel.planes = [(sub(p0, pos), n, a, half) for p0, n, a, half in self.planes]
+            rel.shadow_only = [(sub(c, pos), r) for c, r in self.shadow_only]
+            rel.light = sub(self.light, pos)
+            moved = dict(cam, position=[0.0, 0.0, 0.0], look_at=list(sub(tuple(cam["look_at"]), pos)))
+            return rel.image(moved)
+        w, h = cam["width"], cam["height"]
         fwd = norm(sub(tuple(cam["look_at"]), pos))
         right = norm(cross(fwd, tuple(cam["up"])))
         up = cross(right, fwd)
@@ -377,6 +394,28 @@ def case_thin_shell(run):
         img, _ = run.render(with_shell(th))
         n = differing_pixels(img, ref)
         yield (f"hollow shell {th:g} thick", n <= 4, f"{n} pixels differ from a 1e-2 shell (allowed 4)")
+    # A ball of radius 1 (where a float holds a 1e-7 shell; at radius 10 the
+    # reader refuses it: 10 - 1e-7 rounds to 10), also moved by 1e6, against
+    # the reference that sees through the shell and lets it block the light.
+    walls = room()
+    for th in (1e-5, 1e-7):
+        for shift in (0.0, 1e6):
+            k = 0.1
+            s = scaled(scene_of("thin-shell", walls + [{
+                "name": "hollow", "center": [0, 0, 0], "radius": 10,
+                "inner_radius": 5, "material": {"type": "hollow_glass", "ior": 1.5}}],
+                camera((0, 0, 55), (0, 0, 0), 60), {"position": [-10, 20, 40], "intensity": 2e10}), k)
+            s["spheres"][-1]["radius"], s["spheres"][-1]["inner_radius"] = 1.0, 1.0 - th
+            s = translated(s, (shift, shift, shift))
+            img, _ = run.render(s)
+            mv = lambda v: tuple(a * k + shift for a in v)
+            ref, amb = Reference([(mv(w["center"]), w["radius"] * k, tuple(w["material"]["albedo"]))
+                                  for w in walls], [], mv((-10, 20, 40)), 2e10 * k * k,
+                                 shadow_only=[(mv((0, 0, 0)), 1.0)]).image(s["camera"])
+            n = wrong_against_reference(img, ref, amb)
+            at = f", moved by {shift:g}" if shift else ""
+            yield (f"hollow ball r=1, shell {th:g} thick{at}", n <= 2,
+                   f"{n} pixels off the see-through reference (allowed 2)")
 
 
 def case_tiny_ball(run):
@@ -394,6 +433,22 @@ def case_tiny_ball(run):
                          2.0).image(cam)
     n = wrong_against_reference(img, ref, amb)
     yield ("ball r=1e-3 at x=50", n <= 2, f"{n} pixels off the double reference (allowed 2)")
+    # Smaller and farther: r = 1e-5 at 1e6 and r = 1e-6 at 9.99e6 (the
+    # reader's limit), the whole scene scaled with the ball, the intensity
+    # with the square of the scale.
+    for r, x in ((1e-5, 1e6), (1e-6, 9.99e6)):
+        k = r / 1e-3
+        c, back = (x, 0.0, 0.0), (x, 0.0, -20 * r)
+        light = (x + 3 * r, 3 * r, 4 * r)
+        cam = camera((x, 0.0, 10 * r), c, 40)
+        s = scene_of("tiny-ball", [diffuse("tiny", list(c), r, [1, 1, 1]),
+                                   diffuse("back", list(back), 15 * r, [1, 1, 1])], cam,
+                     {"position": list(light), "intensity": 2.0 * k * k})
+        img, _ = run.render(s)
+        ref, amb = Reference([(c, r, (1, 1, 1)), (back, 15 * r, (1, 1, 1))], [], light,
+                             2.0 * k * k).image(cam)
+        n = wrong_against_reference(img, ref, amb)
+        yield (f"ball r={r:g} at x={x:g}", n <= 2, f"{n} pixels off the double reference (allowed 2)")
 
 
 def case_light_on_surface(run):
@@ -541,6 +596,37 @@ def closed_cube_obj(path, half, n):
             f.write(f"f {t[0]} {t[1]} {t[2]}\n")
 
 
+def icosphere_obj(path, radius, levels, jitter, seed=1):
+    """A closed icosphere (20 * 4^levels triangles in every orientation), each
+    vertex's distance from the centre varied by up to jitter / 2 of the radius."""
+    import random
+    t = (1 + 5 ** 0.5) / 2
+    verts = [norm(v) for v in ((-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                               (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1))]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4),
+             (11, 10, 2), (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8),
+             (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(levels):
+        mids, finer = {}, []
+
+        def mid(a, b):
+            k = (min(a, b), max(a, b))
+            if k not in mids:
+                verts.append(norm(mul(add(verts[a], verts[b]), 0.5)))
+                mids[k] = len(verts) - 1
+            return mids[k]
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = finer
+    rnd = random.Random(seed)
+    with open(path, "w") as f:
+        for v in verts:
+            f.write("v %r %r %r\n" % mul(v, radius * (1 + jitter * (rnd.random() - 0.5))))
+        for a, b, c in faces:
+            f.write(f"f {a + 1} {b + 1} {c + 1}\n")
+
+
 def case_closed_mesh(run):
     """The camera inside a closed mesh, the light outside: black, with indirect
     light on; also moved to 1e5 and scaled to 1e-4."""
@@ -555,6 +641,19 @@ def case_closed_mesh(run):
         img, st = run.render(sc, spp=4)
         lit = sum(1 for row in img["px"] for p in row if any(v != 0 for v in p))
         yield (f"camera inside a closed mesh, light outside, {what}", lit == 0,
+               f"{lit} pixels not black")
+    # A lumpy icosphere: seams in every orientation, none axis-aligned.
+    obj = run.dir / "ico.obj"
+    icosphere_obj(obj, 20.0, 2, 0.3)
+    mesh = {"name": "ico", "path": str(obj), "material": {"type": "diffuse", "albedo": [0.9, 0.9, 0.9]}}
+    s = scene_of("closed-ico", [diffuse("ball", [0, -5, 0], 4, [1, 1, 1])],
+                 camera((3, 4, 8), (0, -5, 0), 120), {"position": [30, 35, 40], "intensity": 2e10},
+                 meshes=[mesh], indirect=True)
+    for what, sc in (("at the origin", s), ("moved by 9.99e6", translated(s, (9.99e6, -9.99e6, 9.99e6))),
+                     ("scaled by 1e-5", scaled(s, 1e-5)), ("scaled by 1e4", scaled(s, 1e4))):
+        img, st = run.render(sc, spp=2)
+        lit = sum(1 for row in img["px"] for p in row if any(v != 0 for v in p))
+        yield (f"camera inside a closed icosphere, light outside, {what}", lit == 0,
                f"{lit} pixels not black")
 
 
@@ -576,6 +675,16 @@ def case_degenerate_mesh(run):
     n = differing_pixels(img, ref, levels=0.0)
     yield ("degenerate triangles beside a real one", n == 0 and st["nan_count"] == 0,
            f"{n} pixels differ, nan_count {st['nan_count']}")
+    # A mesh with no triangle of non-zero area is refused, by name, not drawn as nothing.
+    c = run.dir / "all-degenerate.obj"
+    c.write_text("v 1 1 1\nv 1 1 1\nv 2 2 2\nv 3 3 3\nf 1 2 3\nf 2 3 4\n")
+    try:
+        run.render(mk(c))
+        refused, msg = False, "rendered"
+    except RuntimeError as e:
+        msg = str(e).strip().splitlines()[-1]
+        refused = "all-degenerate.obj" in msg and "no triangles with non-zero area" in msg
+    yield ("a mesh of only degenerate triangles is refused", refused, msg[-120:])
 
 
 def case_extreme_glass(run):
@@ -594,6 +703,161 @@ def case_extreme_glass(run):
                    f"nan_count {st['nan_count']}, finite {finite}")
 
 
+def case_light_in_cage(run):
+    """A light inside a small closed ball, the camera outside: nothing is lit
+    (the closed form), whatever the ball's size against the light's distance,
+    also moved by 1e6; and inside a small closed cube mesh."""
+    walls, cam, light = room(), camera((0, 0, 55), (0, 0, 0), 60), (-10.0, 20.0, 40.0)
+    # Radii down to 1e-4, about 2e-6 of the light's distance from the
+    # camera: smaller, the float positions of render space cannot tell a
+    # light inside a ball from one on its surface (docs/NUMERICS.md).
+    for r, shift, k in ((1e-2, 0.0, 1.0), (1e-3, 0.0, 1.0), (1e-4, 0.0, 1.0), (1e-4, 1e6, 1.0),
+                        (1e-4, 0.0, 1e-2)):
+        s = scene_of("light-in-cage", walls + [diffuse("cage", list(light), r, [1, 1, 1]),
+                                               diffuse("ball", [0, 0, 0], 10, [1, 1, 1])],
+                     cam, {"position": list(light), "intensity": 2e10})
+        img, _ = run.render(translated(scaled(s, k), (shift, shift, shift)))
+        lit = sum(1 for row in img["px"] for p in row if any(v != 0 for v in p))
+        at = (f", moved by {shift:g}" if shift else "") + (f", all scaled by {k:g}" if k != 1 else "")
+        yield (f"light inside a ball of radius {r:g} of the scale{at}", lit == 0,
+               f"{lit} pixels not black")
+    obj = run.dir / "cage.obj"
+    closed_cube_obj(obj, 1e-2, 2)
+    s = scene_of("light-in-mesh-cage", walls + [diffuse("ball", [0, 0, 0], 10, [1, 1, 1])], cam,
+                 {"position": list(light), "intensity": 2e10},
+                 meshes=[{"name": "cage", "path": str(obj), "translate": list(light),
+                          "material": {"type": "diffuse", "albedo": [1, 1, 1]}}])
+    img, _ = run.render(s)
+    lit = sum(1 for row in img["px"] for p in row if any(v != 0 for v in p))
+    yield ("light inside a closed cube mesh of half-size 1e-2", lit == 0, f"{lit} pixels not black")
+
+
+def floor_quad_obj(path, half, y):
+    """Two triangles, the square |x|, |z| <= half at height y, facing up."""
+    path.write_text(f"v {-half!r} {y!r} {-half!r}\nv {half!r} {y!r} {-half!r}\n"
+                    f"v {half!r} {y!r} {half!r}\nv {-half!r} {y!r} {half!r}\nf 1 3 2\nf 1 4 3\n")
+
+
+def case_huge_mesh(run):
+    """A ground of two triangles 2e4 and 2e5 across (vertices exact in float),
+    a ball of radius 1 resting on it, seen from a few units away: against the
+    double-precision reference's plane."""
+    light = (2.0, 5.0, 1.0)
+    # Not beyond 1e5: a triangle 2e6 across has a spawn offset of about 0.8
+    # (docs/NUMERICS.md, "What it does not do").
+    for half in (1e4, 1e5):
+        obj = run.dir / f"ground-{half:g}.obj"
+        floor_quad_obj(obj, half, -1.0)
+        for cam_at in ((0.0, 0.0, 5.0), (3.0, 0.5, 3.0)):
+            cam = camera(cam_at, (0, -0.5, 0), 90)
+            s = scene_of("huge-ground", [diffuse("ball", [0, 0, 0], 1, [1, 1, 1])], cam,
+                         {"position": list(light), "intensity": 2e7},
+                         meshes=[{"name": "ground", "path": str(obj),
+                                  "material": {"type": "diffuse", "albedo": [1, 1, 1]}}])
+            img, _ = run.render(s)
+            ref, amb = Reference([((0.0, 0.0, 0.0), 1.0, (1, 1, 1))],
+                                 [((0.0, -1.0, 0.0), (0.0, 1.0, 0.0), (1, 1, 1), half)],
+                                 light, 2e7).image(cam)
+            n = wrong_against_reference(img, ref, amb)
+            yield (f"ground {2 * half:g} across, camera at {cam_at}", n <= 2,
+                   f"{n} pixels off the reference (allowed 2)")
+
+
+def case_glass_far(run):
+    """The camera inside a glass ball: with index 1 and no Fresnel against the
+    see-through reference (the ball bends nothing but blocks shadow rays);
+    with indices 1.0001 and 4, the scene moved by 1e6 or scaled by 1e-5 and
+    1e4 renders as at the origin."""
+    walls = room()
+    ref_walls = [(tuple(w["center"]), w["radius"], tuple(w["material"]["albedo"])) for w in walls]
+    for centre, radius in (((0.0, 0.0, 45.0), 15.0), ((0.0, 0.0, 50.0), 8.0)):
+        def mk(ior):
+            return scene_of("glass-far", copy.deepcopy(walls) + [
+                {"name": "g", "center": list(centre), "radius": radius,
+                 "material": {"type": "glass", "ior": ior}},
+                diffuse("ball", [10, -5, -10], 5, [1, 1, 1])],
+                camera((0, 0, 55), (0, 0, 0), 60), {"position": [-10, 20, 40], "intensity": 2e10},
+                max_depth=30)
+        img, _ = run.render(mk(1.0), "--fresnel", "off")
+        ref, amb = Reference(ref_walls + [((10.0, -5.0, -10.0), 5.0, (1, 1, 1))], [], (-10.0, 20.0, 40.0),
+                             2e10, shadow_only=[(centre, radius)]).image(mk(1.0)["camera"])
+        n = wrong_against_reference(img, ref, amb)
+        yield (f"camera in glass r={radius:g}, ior 1, against the see-through reference", n <= 2,
+               f"{n} pixels off (allowed 2)")
+        for ior in (1.0001, 4.0):
+            base, _ = run.render(mk(ior), "--fresnel", "off")
+            for what, sc in (("moved by 1e6", translated(mk(ior), (1e6, -1e6, 1e6))),
+                             ("scaled by 1e-5", scaled(mk(ior), 1e-5)),
+                             ("scaled by 1e4", scaled(mk(ior), 1e4))):
+                img, st = run.render(sc, "--fresnel", "off")
+                n = differing_pixels(img, base)
+                yield (f"camera in glass r={radius:g}, ior {ior:g}, {what}", n <= 8 and st["nan_count"] == 0,
+                       f"{n} of 4096 pixels differ (allowed 8), nan_count {st['nan_count']}")
+
+
+def case_noise_free_error(run):
+    """A noise-free image (direct light at pixel centres) has a relative
+    standard error of 0 at every intensity: the stats must not report the
+    rounding of their own sums as noise."""
+    base = load_scene("three-balls")
+    for i in (2e10, 1e30, 1e-30):
+        s = copy.deepcopy(base)
+        s["light"]["intensity"] = i
+        _, st = run.render(s, spp=4)
+        e = st.get("relative_standard_error")
+        yield (f"three-balls, intensity {i:g}: relative standard error", isinstance(e, (int, float)) and e <= 1e-6,
+               f"{e} (a noise-free image: at most 1e-6)")
+
+
+def subdivided_obj(src, dst):
+    """Each triangle of an OBJ split in four at its edge midpoints (in double)."""
+    verts, faces = [], []
+    for line in open(src):
+        if line.startswith("v "):
+            verts.append(tuple(float(v) for v in line.split()[1:4]))
+        elif line.startswith("f "):
+            faces.append([int(t.split("/")[0]) - 1 for t in line.split()[1:4]])
+    out, mids = list(verts), {}
+
+    def mid(a, b):
+        k = (min(a, b), max(a, b))
+        if k not in mids:
+            out.append(tuple(0.5 * (x + y) for x, y in zip(verts[a], verts[b])))
+            mids[k] = len(out) - 1
+        return mids[k]
+    with open(dst, "w") as f:
+        new = []
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            new += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+        for v in out:
+            f.write("v %r %r %r\n" % v)
+        for t in new:
+            f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
+    return len(faces), len(new)
+
+
+def case_subdivided_cat(run):
+    """The report's program scales a triangle's light by twice its area (an
+    unnormalised cross product): the cat with every triangle split in four
+    must render the same, direct light and with indirect light and
+    anti-aliasing (the same samples: only rounding may differ)."""
+    fine = run.dir / "cat-fine.obj"
+    n0, n1 = subdivided_obj(CAT_OBJ, fine)
+    for what, flags in (("direct light", ["--indirect", "off", "--aa", "off"]),
+                        ("indirect light and anti-aliasing", [])):
+        base = load_scene("cat")
+        ref, _ = run.render(base, *flags, spp=4)
+        s = copy.deepcopy(base)
+        s["meshes"][0]["path"] = str(fine)
+        img, _ = run.render(s, *flags, spp=4)
+        n = differing_pixels(img, ref)
+        mr, mi = image_mean(ref), image_mean(img)
+        yield (f"cat split into {n1} triangles ({n0} before), {what}",
+               n <= 8 and abs(mi - mr) <= 2e-3 * mr,
+               f"{n} of 4096 pixels differ (allowed 8); mean {mi:.6g} against {mr:.6g}")
+
+
 CASES = {
     "offset": case_offset,
     "scale": case_scale,
@@ -607,6 +871,11 @@ CASES = {
     "closed-mesh": case_closed_mesh,
     "degenerate-mesh": case_degenerate_mesh,
     "extreme-glass": case_extreme_glass,
+    "light-in-cage": case_light_in_cage,
+    "huge-mesh": case_huge_mesh,
+    "glass-far": case_glass_far,
+    "noise-free-error": case_noise_free_error,
+    "subdivided-cat": case_subdivided_cat,
 }
 
 
