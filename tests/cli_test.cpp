@@ -128,7 +128,8 @@ TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
       {"--headless" + small + " --out " + f("x.jpg"), "must end in .png"},
       {"--headless --light 1e8,0,0" + small + out, "--light 1e8,0,0: coordinates must be in [-1e7, 1e7]"},
       {"--headless --light nan,0,0" + small + out, "--light nan,0,0: expected three finite numbers"},
-      {"merge --out " + f("m.exr"), "parts is required"},
+      {"merge --out " + f("m.exr"), "merge: no parts given; usage: whisker merge PART.exr"},
+      {"merge", "merge: no parts given"},
       {"merge " + f("a.exr") + " --bogus", "unknown option --bogus (see --help)"},
       {"merge " + f("a.exr") + " --out", "--out: needs a value"},
   };

@@ -60,8 +60,7 @@ int run_merge(int argc, char** argv) {
   CLI::App app{"Sums accumulation files (sample-range parts of one render) into one, exactly",
                "whisker merge"};
   MergeOptions o;
-  app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings")
-      ->required();
+  app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings");
   app.add_option("--out", o.outs,
                  "Output: .exr (accumulation file, mergeable again), .pfm (mean radiance), "
                  ".png (the report's mapping); repeatable")
@@ -74,6 +73,8 @@ int run_merge(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
   }
+  if (o.parts.empty())
+    return usage_error("merge: no parts given; usage: whisker merge PART.exr... --out FILE");
   if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);
   try {
     std::vector<NamedAccumulation> parts;
