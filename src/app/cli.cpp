@@ -15,6 +15,7 @@
 
 #include "render/image_io.h"
 #include "scene/quote.h"
+#include "scene/scene_io.h"
 
 namespace whisker {
 
@@ -64,6 +65,16 @@ std::string check_output(const std::string& path, const char* option) {
   if (::access(dir.c_str(), W_OK) != 0)
     return std::string(option) + " " + path + ": folder " + dir.string() + " is not writable";
   return {};
+}
+
+// Whether two paths name one file: the same file now (a hard or symbolic
+// link, "./x" and "x"), or the same name once created.
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ea, eb;
+  if (fs::equivalent(a, b, ea)) return true;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
+                   cb = fs::weakly_canonical(fs::absolute(b), eb);
+  return !ea && !eb && ca == cb;
 }
 
 std::string number_text(double v) {
@@ -272,6 +283,14 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
   }
+  // An option given "" is an error, not an option left out (--out "" beside
+  // --stats wrote no image, silently).
+  for (const char* name : {"--scene", "--mesh", "--light", "--out", "--out-float", "--stats",
+                           "--screenshot", "--edit-light", "--samples", "--resume", "--out-sum"}) {
+    const CLI::Option* opt = app.get_option(name);
+    for (const std::string& r : opt->results())
+      if (r.empty()) return usage_error(std::string(name) + ": needs a value, got \"\" (see --help)");
+  }
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
     if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())
@@ -323,10 +342,29 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
   if (cl.frames > 0 && std::uint64_t(cl.frames) * std::uint64_t(s.spp) > (1ull << 30))
     return "--frames " + std::to_string(cl.frames) + " x --spp " + std::to_string(s.spp) +
            " is more than 2^30 samples per pixel";
-  for (const auto& [path, option] :
-       {std::pair{cl.out_png, "--out"}, {cl.out_float, "--out-float"},
-        {cl.stats_json, "--stats"}, {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}}) {
+  const std::pair<std::string, const char*> outs[] = {
+      {cl.out_png, "--out"}, {cl.out_float, "--out-float"}, {cl.stats_json, "--stats"},
+      {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}};
+  for (const auto& [path, option] : outs) {
     if (auto err = check_output(path, option); !err.empty()) return err;
+  }
+  // No output may replace an input or another output of the same run; the
+  // exception: --out-sum X --resume X continues the accumulation in place.
+  const std::pair<std::string, const char*> ins[] = {
+      {resolve_scene(cl.scene_name).string(), "--scene"}, {cl.mesh, "--mesh"}, {cl.resume, "--resume"}};
+  for (std::size_t i = 0; i < std::size(outs); ++i) {
+    const auto& [path, option] = outs[i];
+    if (path.empty()) continue;
+    for (std::size_t j = i + 1; j < std::size(outs); ++j)
+      if (!outs[j].first.empty() && same_file(path, outs[j].first))
+        return std::string(option) + " " + path + " and " + outs[j].second + " " + outs[j].first +
+               " name the same file; give each output its own";
+    for (const auto& [in, in_option] : ins) {
+      if (in.empty() || (outs[i].second == std::string("--out-sum") && in_option == std::string("--resume")))
+        continue;
+      if (same_file(path, in))
+        return std::string(option) + " " + path + ": is the " + in_option + " input; write it elsewhere";
+    }
   }
   if (!cl.out_png.empty() && lower_extension(cl.out_png) != ".png")
     return "--out " + cl.out_png + ": must end in .png";

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <new>
 #include <system_error>
 
 #include "app/cli.h"
@@ -32,6 +33,7 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
+  install_signal_handlers(true);
   return run_headless(h);
 }
 
@@ -88,9 +90,11 @@ int main(int argc, char** argv) {
   }
   CommandLine cl;
   if (const auto code = parse_command_line(argc, argv, cl)) return *code;
-  // Headless: Ctrl-C writes the passes so far; the viewer: ends at once.
-  // Both remove the temporary files of writes in progress.
-  install_signal_handlers(cl.headless);
+  // While loading, Ctrl-C ends at once (nothing to write yet; a scene read
+  // from a pipe nobody writes would never end otherwise). Once the render
+  // starts, headless: Ctrl-C writes the passes so far; the viewer: ends at
+  // once. Both remove the temporary files of writes in progress.
+  install_signal_handlers(false);
   if (const std::string why = missing_scene(cl.scene_name); !why.empty()) return usage_error(why);
   std::error_code ec;
   if (!cl.mesh.empty() && !std::filesystem::is_regular_file(cl.mesh, ec))
@@ -105,6 +109,8 @@ int main(int argc, char** argv) {
     return usage_error(cut_for_message(e.path1().string()) + ": " + e.code().message());
   } catch (const std::system_error& e) {
     return usage_error(resolve_scene(cl.scene_name).string() + ": " + e.code().message());
+  } catch (const std::bad_alloc&) {
+    return usage_error(resolve_scene(cl.scene_name).string() + ": out of memory while loading the scene");
   }
   // Command-line settings override the scene file's.
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);

@@ -28,6 +28,26 @@ struct MergeOptions {
 std::string check_outs(const MergeOptions& o) {
   if (o.outs.empty() && o.stats_json.empty())
     return "merge needs at least one --out (.exr, .pfm or .png) or --stats";
+  // No output may replace a part or another output (--stats too).
+  std::vector<std::string> all;
+  for (const std::string& out : o.outs) all.push_back("--out " + out);
+  if (!o.stats_json.empty()) all.push_back("--stats " + o.stats_json);
+  const auto path_of = [](const std::string& a) { return a.substr(a.find(' ') + 1); };
+  const auto same_file = [](const fs::path& a, const fs::path& b) {
+    std::error_code ea, eb;
+    if (fs::equivalent(a, b, ea)) return true;
+    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
+                   cb = fs::weakly_canonical(fs::absolute(b), eb);
+    return !ea && !eb && ca == cb;
+  };
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    for (std::size_t j = i + 1; j < all.size(); ++j)
+      if (same_file(path_of(all[i]), path_of(all[j])))
+        return "merge " + all[i] + " and " + all[j] + " name the same file; give each output its own";
+    for (const std::string& part : o.parts)
+      if (same_file(path_of(all[i]), part))
+        return "merge " + all[i] + ": is one of the parts; write the merge elsewhere";
+  }
   for (const std::string& out : o.outs) {
     const auto ext = fs::path(out).extension();
     if (ext != ".exr" && ext != ".pfm" && ext != ".png")
@@ -73,6 +93,8 @@ int run_merge(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
   }
+  if (app.count("--stats") && o.stats_json.empty())
+    return usage_error("merge --stats: needs a value, got \"\" (see --help)");
   if (o.parts.empty())
     return usage_error("merge: no parts given; usage: whisker merge PART.exr... --out FILE");
   if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);

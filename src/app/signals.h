@@ -1,6 +1,6 @@
 // Ctrl-C (SIGINT) and SIGTERM: never a temporary file left behind, and in a
 // headless render the passes completed are written before the exit
-// (docs/RELIABILITY.md, "What Ctrl-C does").
+// (docs/RELIABILITY.md, promises 5-7).
 #pragma once
 
 namespace whisker {

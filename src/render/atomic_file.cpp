@@ -2,8 +2,11 @@
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -96,6 +99,26 @@ bool write_all(const std::string& name, std::string_view bytes) {
   return ok;
 }
 
+// ".NAME.tmp-PID" beside the target, so the rename stays on one file system.
+// It must itself be a legal name: for a NAME near NAME_MAX (255 bytes) only
+// its start is kept, with a hash of the whole so two long names that share
+// a start still differ.
+std::string temp_name(const std::string& name) {
+  constexpr std::size_t kNameMaxBytes = NAME_MAX;
+  const std::string suffix = ".tmp-" + std::to_string(::getpid());
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + s.
+  std::string out(1, '.');
+  if (1 + name.size() + suffix.size() <= kNameMaxBytes) {
+    out.append(name).append(suffix);
+    return out;
+  }
+  char hash[24];
+  std::snprintf(hash, sizeof hash, "~%016zx", std::hash<std::string>{}(name));
+  const std::size_t keep = kNameMaxBytes - 1 - suffix.size() - std::strlen(hash);
+  out.append(name, 0, keep).append(hash).append(suffix);
+  return out;
+}
+
 void commit(const std::string& path, const std::function<bool(const std::string&)>& writer,
             bool synced) {
   const fs::path target(path);
@@ -103,11 +126,7 @@ void commit(const std::string& path, const std::function<bool(const std::string&
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail(path, "folder " + dir.string() + " does not exist");
   if (const std::string why = not_replaceable(path); !why.empty()) fail(path, why);
-  // ".name.tmp-PID" beside the target, so the rename stays on one file system.
-  std::string name = target.filename().string();
-  name.insert(name.begin(), '.');
-  name += ".tmp-" + std::to_string(::getpid());
-  const std::string tmp = (dir / name).string();
+  const std::string tmp = (dir / temp_name(target.filename().string())).string();
   const ListedTemp listed(tmp);
   errno = 0;  // so a failure's reason is the writer's, not an older one
   std::string why;

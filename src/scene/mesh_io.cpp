@@ -52,6 +52,9 @@ bool known_keyword(std::string_view k) {
   return false;
 }
 
+// The most corners a face may have (a 1,000-gon triangulates in about 3 ms).
+constexpr int kMaxFaceCorners = 1000;
+
 struct Scan {
   std::size_t vertices = 0, faces = 0;
   long max_index = 0;            // largest positive vertex index seen
@@ -112,6 +115,10 @@ Scan scan(const std::string& path, const std::string& text) {
         ++corners;
       }
       if (corners < 3) fail(path, line_no, "face with fewer than 3 vertices");
+      // tinyobjloader's triangulation takes time quadratic in the corners.
+      if (corners > kMaxFaceCorners)
+        fail(path, line_no, "face with " + std::to_string(corners) + " corners; at most " +
+                                std::to_string(kMaxFaceCorners) + " (triangulate it first)");
       ++s.faces;
     } else if (key == "mtllib") {
       s.mtllibs.emplace_back(trim(rest));
@@ -166,8 +173,12 @@ TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& tr
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, std::string(), config))
-    fail(path, 0, "tinyobjloader: " + reader.Error());
+  if (!reader.ParseFromString(text, std::string(), config)) {
+    std::string why = reader.Error();  // may hold several lines, ends in one
+    while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
+    for (std::size_t k; (k = why.find('\n')) != std::string::npos;) why.replace(k, 1, "; ");
+    fail(path, 0, "tinyobjloader: " + why);
+  }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
 
   const std::size_t nv = attrib.vertices.size() / 3;

@@ -212,12 +212,23 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
     }
     throw SceneError(path.string() + ": scene file not found" + hint);
   }
-  if (fs::is_directory(path, ec)) throw SceneError(path.string() + ": is a directory, not a scene file");
+  const fs::file_status st = fs::status(path, ec);
+  if (fs::is_directory(st)) throw SceneError(path.string() + ": is a directory, not a scene file");
+  // A device (/dev/zero, a terminal) or socket is never a scene; a pipe may be
+  // (--scene <(generate)), so what is read is capped instead.
+  if (fs::is_character_file(st) || fs::is_block_file(st) || fs::is_socket(st))
+    throw SceneError(path.string() + ": is a device, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path.string(), path.parent_path(), mesh_override);
+  constexpr std::size_t kMaxSceneBytes = std::size_t(256) << 20;
+  std::string text;
+  std::vector<char> buf(1 << 16);
+  while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
+    text.append(buf.data(), std::size_t(in.gcount()));
+    if (text.size() > kMaxSceneBytes)
+      throw SceneError(path.string() + ": over 256 MiB; not a scene file");
+  }
+  return parse_scene(text, path.string(), path.parent_path(), mesh_override);
 }
 
 namespace {

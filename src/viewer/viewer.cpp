@@ -276,7 +276,7 @@ struct Session {
 
       const double t_work = glfwGetTime();
       if (finish && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
-        exit_code = 1;
+        exit_code = 2;  // an output that cannot be written, as headless
       glfwSwapBuffers(window);
       record_timing(t0, t_work, glfwGetTime(), finish);
       if (finish) break;

@@ -6,7 +6,11 @@ set(WHISKER_FAULT_CASES
   sigint-mid-write-cleans-up sigkill-mid-write-never-partial
   disk-full-png disk-full-pfm disk-full-exr disk-full-stats
   readonly-folder special-fifo-targets special-device-target
-  float-options-refuse-nan mesh-filesystem-errors)
+  float-options-refuse-nan mesh-filesystem-errors
+  sigterm-render-writes-passes-so-far disk-full-sum disk-full-checkpoint disk-full-merge
+  special-targets-every-option long-output-names
+  outputs-never-clobber-inputs signal-while-loading scene-device-files huge-polygon
+  messages-one-line empty-option-values)
 foreach(c ${WHISKER_FAULT_CASES})
   add_test(NAME Faults.${c}
     COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/cli_faults.sh $<TARGET_FILE:whisker> ${c})
