@@ -1,16 +1,20 @@
 // The BVH: watertight on a closed mesh (also far from the origin), the same
-// closest hit as brute force on the cat, hard triangles, any-hit.
+// closest hit as brute force on the cat, hard triangles, any-hit; spatial
+// splits (triangles in several leaves) and the optimal collapse to 8-wide.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <random>
+#include <set>
 #include <utility>
 
 #include "geometry/bvh.h"
+#include "geometry/bvh_build.h"
 #include "scene/mesh_io.h"
 
 namespace whisker {
@@ -207,6 +211,154 @@ TEST(Bvh, SahMidpointAndBruteAgreeOnTheCat) {
   }
   EXPECT_GT(hits, rays.size() / 4);  // the case was exercised
   EXPECT_LT(hits, rays.size());
+}
+
+// Long thin triangles along about the same diagonal: all their object splits
+// overlap badly, so the spatial-split build cuts them.
+std::vector<Triangle> slivers(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+  std::vector<Triangle> tris;
+  for (int i = 0; i < n; ++i) {
+    const vec3 p = 2.0f * vec3(U(rng), U(rng), U(rng));
+    const vec3 u = glm::normalize(vec3(1.0f) + 0.2f * vec3(U(rng), U(rng), U(rng)));
+    const vec3 w = glm::normalize(glm::cross(u, vec3(U(rng), U(rng), U(rng)) + vec3(2e-3f)));
+    tris.push_back({p - 4.0f * u, p + 4.0f * u, p + 0.05f * w});
+  }
+  return tris;
+}
+
+TEST(Bvh, SpatialSplitsReferenceTrianglesTwiceInATreeThatHoldsThem) {
+  const std::vector<Triangle> tris = slivers(800, 3);
+  const BinaryBvh bin = build_binary_sbvh(tris, kWidth);
+  EXPECT_GT(bin.prims.size(), tris.size());  // triangles were split, at most once each
+  EXPECT_LE(bin.prims.size(), 2 * tris.size());
+  std::vector<int> seen(tris.size(), 0);
+  // References under node i, checking boxes and that each subtree's
+  // references are one run of prims from its first.
+  std::function<std::uint32_t(std::uint32_t)> walk = [&](std::uint32_t i) -> std::uint32_t {
+    const BinaryNode& n = bin.nodes[i];
+    if (n.leaf()) {
+      EXPECT_LE(n.count, std::uint32_t(kWidth));
+      std::set<std::uint32_t> in_leaf;
+      for (std::uint32_t k = n.first; k < n.first + n.count; ++k) {
+        const std::uint32_t prim = bin.prims[k];
+        EXPECT_TRUE(in_leaf.insert(prim).second) << "twice in one leaf: " << prim;
+        ++seen[prim];
+        const Box3 b = bounds_of(tris[prim]);  // the part lies in both boxes
+        for (int a = 0; a < 3; ++a)
+          EXPECT_LE(std::max(b.lo[a], n.box.lo[a]), std::min(b.hi[a], n.box.hi[a]));
+      }
+      return n.count;
+    }
+    const BinaryNode &l = bin.nodes[n.left], &r = bin.nodes[n.right];
+    for (int a = 0; a < 3; ++a)
+      EXPECT_TRUE(n.box.lo[a] <= std::min(l.box.lo[a], r.box.lo[a]) &&
+                  n.box.hi[a] >= std::max(l.box.hi[a], r.box.hi[a]));
+    EXPECT_EQ(l.first, n.first);
+    const std::uint32_t left = walk(n.left);
+    EXPECT_EQ(r.first, n.first + left);
+    return left + walk(n.right);
+  };
+  EXPECT_EQ(walk(0), bin.prims.size());
+  for (std::size_t i = 0; i < seen.size(); ++i) EXPECT_GE(seen[i], 1) << i;
+}
+
+TEST(Bvh, SpatialSplitsFindTheClosestHitsOfBruteForce) {
+  const std::vector<Triangle> tris = slivers(800, 4);
+  const Bvh brute = Bvh::build(tris, BvhMethod::Brute);
+  const Bvh sah = Bvh::build(tris, BvhMethod::Sah);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+  std::uniform_int_distribution<std::size_t> pick(0, tris.size() - 1);
+  std::size_t hits = 0;
+  for (int i = 0; i < 40000; ++i) {
+    // Half aimed at a point of a triangle, so there are hits to compare.
+    const Triangle& t = tris[pick(rng)];
+    const float a = 0.5f * (U(rng) + 1.0f), b = 0.5f * (1.0f - a) * (U(rng) + 1.0f);
+    const vec3 target = i % 2 ? t.v0 + a * (t.v1 - t.v0) + b * (t.v2 - t.v0)
+                              : 6.0f * vec3(U(rng), U(rng), U(rng));
+    const vec3 o = 10.0f * vec3(U(rng), U(rng), U(rng));
+    const Ray r{o, glm::normalize(target - o)};
+    Hit hb, hs;
+    const bool hit = brute.intersect(r, hb);
+    ASSERT_EQ(sah.intersect(r, hs), hit) << i;
+    ASSERT_EQ(sah.occluded(r), hit) << i;
+    if (!hit) continue;
+    ++hits;
+    ASSERT_TRUE(hs.prim == hb.prim && hs.t == hb.t && hs.u == hb.u && hs.v == hb.v) << i;
+    const Ray s{r.o, r.d, 0.0f, std::nextafter(hb.t, 0.0f)};  // stops just short
+    ASSERT_EQ(sah.occluded(s), brute.occluded(s)) << i;
+  }
+  EXPECT_GT(hits, 10000u);
+}
+
+// Every point of a triangle on one side of the plane is in that side's box,
+// also for a part already split off (`within`), far from the origin too.
+TEST(Bvh, SplitTriangleBoxesHoldTheirPartOfTheTriangle) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  auto in = [](const Box3& b, const glm::dvec3& p) {
+    return b.lo.x <= p.x && b.lo.y <= p.y && b.lo.z <= p.z && p.x <= b.hi.x && p.y <= b.hi.y &&
+           p.z <= b.hi.z;
+  };
+  for (int i = 0; i < 3000; ++i) {
+    const vec3 c = vec3(float(i % 3 == 0 ? 1e4 : 1.0)) * vec3(U(rng), U(rng), U(rng));
+    const float s = float(i % 5 == 0 ? 1e-3 : 1.0);
+    Triangle t;
+    for (vec3* v : {&t.v0, &t.v1, &t.v2}) *v = c + s * vec3(U(rng), U(rng), U(rng));
+    const Box3 b = bounds_of(t);
+    const int a1 = i % 3, a2 = (i / 3) % 3;
+    const float p1 = b.lo[a1] + float(U(rng)) * (b.hi[a1] - b.lo[a1]);
+    const float p2 = b.lo[a2] + float(U(rng)) * (b.hi[a2] - b.lo[a2]);
+    Box3 l1, r1, l2, r2;
+    split_triangle(t, b, a1, p1, l1, r1);
+    split_triangle(t, l1, a2, p2, l2, r2);  // l1's part, split again
+    const glm::dvec3 v0(t.v0), e1 = glm::dvec3(t.v1) - v0, e2 = glm::dvec3(t.v2) - v0;
+    for (int k = 0; k < 300; ++k) {
+      double x = U(rng), y = U(rng);
+      if (x + y > 1.0) x = 1.0 - x, y = 1.0 - y;
+      if (k < 3) x = k == 1, y = k == 2;  // the vertices
+      if (k >= 3 && k < 60) {  // the edges, where they cross the planes most of all
+        const double along[3] = {(p1 - v0[a1]) / e1[a1], (p1 - v0[a1]) / e2[a1],
+                                 (p2 - v0[a2]) / e1[a2]};
+        const double w = k < 30 ? std::clamp(along[k % 3], 0.0, 1.0) : x;
+        x = k % 3 == 1 ? 0.0 : k % 3 == 2 ? 1.0 - w : w;
+        y = k % 3 == 0 ? 0.0 : k % 3 == 1 ? w : 1.0 - x;
+      }
+      const glm::dvec3 q = v0 + x * e1 + y * e2;
+      const bool left1 = q[a1] <= p1, right1 = q[a1] >= p1;
+      ASSERT_TRUE((!left1 || in(l1, q)) && (!right1 || in(r1, q))) << i << " " << k;
+      ASSERT_TRUE(!left1 || q[a2] > p2 || in(l2, q)) << i << " " << k;
+      ASSERT_TRUE(!left1 || q[a2] < p2 || in(r2, q)) << i << " " << k;
+    }
+  }
+}
+
+TEST(Bvh, OptimalCollapseHoldsEveryTriangleOnceInFewerNodes) {
+  const std::vector<Triangle> tris = load_cat();
+  const BinaryBvh bin = build_binary_sah(tris, kWidth);
+  const WideBvh greedy = collapse_to_wide(bin, tris);
+  const WideBvh best = collapse_to_wide_sah(bin, tris);
+  EXPECT_LT(best.nodes.size(), greedy.nodes.size());
+  std::vector<int> seen(tris.size(), 0);
+  for (const WideNode& n : best.nodes)
+    for (std::uint32_t ref : n.child) {
+      if (ref == kEmptyRef || !(ref & kLeafBit)) continue;
+      const std::uint32_t first = ref & 0xffffffu, count = ((ref >> 24) & 0x7fu) + 1;
+      for (const TriPacket* pk = &best.packets[first]; pk < &best.packets[first] + count; ++pk)
+        for (int i = 0; i < kWidth; ++i)  // an unused lane is all zeros
+          seen[pk->prim[i]] += pk->v[0][0][i] != 0 || pk->v[1][1][i] != 0 || pk->v[2][2][i] != 0;
+    }
+  for (std::size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << i;
+  const Bvh brute = Bvh::build(tris, BvhMethod::Brute);
+  for (const Ray& r : cat_rays(tris, 20000)) {
+    Hit hb, hw;
+    const bool hit = brute.intersect(r, hb);
+    ASSERT_EQ(best.intersect(r, hw), hit);
+    ASSERT_EQ(best.occluded(r), hit);
+    ASSERT_TRUE(!hit || (hw.prim == hb.prim && hw.t == hb.t));
+  }
 }
 
 TEST(Bvh, BarycentricsReconstructTheHitPoint) {

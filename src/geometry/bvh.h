@@ -1,8 +1,10 @@
 // Bounding volume hierarchy over triangles.
 //
-// Sah and Midpoint build a binary tree (bvh_build.h), then collapse it into an
-// 8-wide tree (bvh_wide.h): one node holds the boxes of up to 8 children in
-// SIMD layout, a leaf is a run of 8-triangle packets. Brute and BBox are the
+// Sah and Midpoint build a binary tree (bvh_build.h; Sah with spatial splits,
+// so a triangle may sit in several leaves), then collapse it into an 8-wide
+// tree (bvh_wide.h; Sah by the SAH-optimal choice of children, Midpoint
+// greedily): one node holds the boxes of up to 8 children in SIMD layout, a
+// leaf is a run of 8-triangle packets. Brute and BBox are the
 // report's figure 7 loop over every triangle (without, then behind one box),
 // testing the same packets 8 triangles at a time.
 #pragma once

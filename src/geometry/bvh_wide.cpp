@@ -45,6 +45,7 @@ struct RayAvx {
   // Watertight test, in the permuted axes of WatertightRay.
   int kx, ky, kz;
   __m256 okx, oky, okz, sx, sy, sz;
+  bool tmin_nonneg;  // then a hit needs t > 0
 
   explicit RayAvx(const Ray& r) {
     const float inv[3] = {safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)};
@@ -70,25 +71,40 @@ struct RayAvx {
     far_x = near_x < 24 ? near_x + 24 : near_x - 24;
     far_y = near_y < 24 ? near_y + 24 : near_y - 24;
     far_z = near_z < 24 ? near_z + 24 : near_z - 24;
+    inv4 = _mm_setr_ps(inv[0], inv[1], inv[2], 0.0f);
+    tmin_nonneg = r.tmin >= 0.0f;
   }
 
-  // The triangle test's part, made only once a leaf is reached: most rays
-  // in the report's room never come near the mesh, and the root's box test
-  // turns them away before this setup (and its division) would be paid.
-  bool triangles_ready = false;
+  // The triangle test's part, made once the root's box test passes: most
+  // rays in the report's room never come near the mesh. The same axes and
+  // shear as WatertightRay (triangle.h), but picked by a table and permutes
+  // rather than branches, which an incoherent ray would mispredict. 1/d[kz]
+  // is its division too: |d[kz]| >= |d| / sqrt(3) is never nudged.
+  __m128 inv4;  // 1 / d
   void prepare_triangles(const Ray& r) {
-    if (triangles_ready) return;
-    triangles_ready = true;
-    const WatertightRay w(r);
-    kx = w.kx;
-    ky = w.ky;
-    kz = w.kz;
-    okx = _mm256_set1_ps(r.o[kx]);
-    oky = _mm256_set1_ps(r.o[ky]);
-    okz = _mm256_set1_ps(r.o[kz]);
-    sx = _mm256_set1_ps(w.sx);
-    sy = _mm256_set1_ps(w.sy);
-    sz = _mm256_set1_ps(w.sz);
+    const __m128 d4 = _mm_setr_ps(r.d.x, r.d.y, r.d.z, 0.0f);
+    const __m128 o4 = _mm_setr_ps(r.o.x, r.o.y, r.o.z, 0.0f);
+    const __m128 i4 = inv4;
+    const float ax = std::fabs(r.d.x), ay = std::fabs(r.d.y), az = std::fabs(r.d.z);
+    // kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2); kx, ky follow
+    // it cyclically, swapped when d[kz] < 0.
+    static constexpr std::int8_t kZ[8] = {2, 2, 2, 0, 1, 2, 1, 0};
+    kz = kZ[(ax > ay) | (ax > az) << 1 | (ay > az) << 2];
+    const int flip = (_mm_movemask_ps(_mm_cmplt_ps(d4, _mm_setzero_ps())) >> kz) & 1;
+    static constexpr std::int8_t kXY[3][2][2] = {
+        {{1, 2}, {2, 1}}, {{2, 0}, {0, 2}}, {{0, 1}, {1, 0}}};
+    kx = kXY[kz][flip][0];
+    ky = kXY[kz][flip][1];
+    const __m128i bx = _mm_set1_epi32(kx), by = _mm_set1_epi32(ky), bz = _mm_set1_epi32(kz);
+    const __m128 z = _mm_permutevar_ps(i4, bz);
+    const __m128 sd = _mm_mul_ps(d4, z);
+    auto wide = [](__m128 v) { return _mm256_set_m128(v, v); };
+    okx = wide(_mm_permutevar_ps(o4, bx));
+    oky = wide(_mm_permutevar_ps(o4, by));
+    okz = wide(_mm_permutevar_ps(o4, bz));
+    sx = wide(_mm_permutevar_ps(sd, bx));
+    sy = wide(_mm_permutevar_ps(sd, by));
+    sz = wide(z);
   }
 };
 
@@ -111,7 +127,9 @@ inline unsigned box_test(const RayAvx& r, const WideNode& n, __m256 tmin, __m256
 
 // The watertight test of triangle.h on 8 triangles, operation for operation
 // (same fused multiply-adds), so it returns the same t, u, v bit for bit.
-// Returns the lanes hit within (tmin, tmax).
+// Returns the lanes hit within (tmin, tmax). One exit, after all three edges
+// and the sign of t: an early exit on its own branch mispredicted on the
+// incoherent rays more than it saved.
 inline unsigned tri_test(const RayAvx& r, const TriPacket& p, __m256 tmin, __m256 tmax,
                          __m256& t, __m256& e1, __m256& e2, __m256& inv) {
   __m256 X[3], Y[3], Z[3];
@@ -134,15 +152,17 @@ inline unsigned tri_test(const RayAvx& r, const TriPacket& p, __m256 tmin, __m25
   e1 = dop(X[0], Y[2], Y[0], X[2]);
   __m256 neg = _mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_LT_OQ), _mm256_cmp_ps(e1, zero, _CMP_LT_OQ));
   __m256 pos = _mm256_or_ps(_mm256_cmp_ps(e0, zero, _CMP_GT_OQ), _mm256_cmp_ps(e1, zero, _CMP_GT_OQ));
-  // The common case: two edges already disagree for all 8.
-  if (_mm256_movemask_ps(_mm256_and_ps(neg, pos)) == 0xff) return 0;
   e2 = dop(X[1], Y[0], Y[1], X[0]);
   neg = _mm256_or_ps(neg, _mm256_cmp_ps(e2, zero, _CMP_LT_OQ));
   pos = _mm256_or_ps(pos, _mm256_cmp_ps(e2, zero, _CMP_GT_OQ));
   const unsigned mixed = static_cast<unsigned>(_mm256_movemask_ps(_mm256_and_ps(neg, pos)));
-  if (mixed == 0xffu) return 0;
+  if (!r.tmin_nonneg && mixed == 0xffu) return 0;
   const __m256 det = _mm256_add_ps(_mm256_add_ps(e0, e1), e2);
   const __m256 tt = _mm256_fmadd_ps(e2, Z[2], _mm256_fmadd_ps(e1, Z[1], _mm256_mul_ps(e0, Z[0])));
+  // t = tt / det > tmin >= 0 needs tt and det of one sign. A ray leaving a
+  // surface passes its own triangle's edges with t < 0: no division then.
+  const unsigned ahead = ~static_cast<unsigned>(_mm256_movemask_ps(_mm256_xor_ps(tt, det)));
+  if (r.tmin_nonneg && (ahead & ~mixed & 0xffu) == 0) return 0;
   inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
   t = _mm256_mul_ps(tt, inv);
   const __m256 ok = _mm256_and_ps(
@@ -200,6 +220,50 @@ struct Closest {
   }
 };
 
+// The children of n in mask (entry distances tnear), front to back: the
+// nearest becomes ref, the others go on the stack far to near, so the
+// nearest of them pops next.
+inline void descend(const WideNode& n, unsigned mask, __m256 tnear, StackEntry* stack, int& sp,
+                    std::uint32_t& ref) {
+  const unsigned first = static_cast<unsigned>(__builtin_ctz(mask));
+  mask &= mask - 1;
+  if (mask == 0) {
+    ref = n.child[first];
+    return;
+  }
+  alignas(32) float dist[kWidth];
+  _mm256_store_ps(dist, tnear);
+  const unsigned second = static_cast<unsigned>(__builtin_ctz(mask));
+  mask &= mask - 1;
+  // Two, the common case: ordered by selects rather than a branch.
+  const StackEntry a{n.child[first], dist[first]}, b{n.child[second], dist[second]};
+  const bool b_first = b.t < a.t;
+  const StackEntry near = b_first ? b : a, far = b_first ? a : b;
+  StackEntry* top = stack + sp;
+  top[0] = far;
+  if (mask == 0) {
+    ++sp;
+    ref = near.ref;
+    return;
+  }
+  // More: insertion sort on top of the stack, descending by distance.
+  top[1] = near;
+  int k = 2;
+  while (mask) {
+    const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
+    mask &= mask - 1;
+    const StackEntry x{n.child[i], dist[i]};
+    int j = k++;
+    while (j > 0 && top[j - 1].t < x.t) {
+      top[j] = top[j - 1];
+      --j;
+    }
+    top[j] = x;
+  }
+  sp += k - 1;
+  ref = top[k - 1].ref;
+}
+
 #endif  // WHISKER_BVH_AVX2
 
 inline bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
@@ -220,51 +284,28 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
     c.packets(r, packets.data(), packets.size(), tmin);
     return c.store(hit);
   }
+  __m256 tnear;
+  const unsigned root = box_test(r, nodes[0], tmin, c.tmax, tnear);
+  if (root == 0) return false;
+  r.prepare_triangles(ray);
   StackEntry stack[kStackSize];
   int sp = 0;
-  std::uint32_t ref = 0;
+  std::uint32_t ref;
+  descend(nodes[0], root, tnear, stack, sp, ref);
   for (;;) {
     if (!is_leaf(ref)) {
       const WideNode& n = nodes[ref];
-      __m256 tnear;
-      unsigned mask = box_test(r, n, tmin, c.tmax, tnear);
+      const unsigned mask = box_test(r, n, tmin, c.tmax, tnear);
       if (mask != 0) {
-        const unsigned first = static_cast<unsigned>(__builtin_ctz(mask));
-        mask &= mask - 1;
-        if (mask == 0) {
-          ref = n.child[first];
-          continue;
-        }
-        // Several children: visit the nearest first, stack the rest far to
-        // near so the nearest of them pops next (front-to-back order).
-        alignas(32) float dist[kWidth];
-        _mm256_store_ps(dist, tnear);
-        StackEntry e[kWidth];
-        int k = 0;
-        e[k++] = {n.child[first], dist[first]};
-        while (mask) {
-          const unsigned i = static_cast<unsigned>(__builtin_ctz(mask));
-          mask &= mask - 1;
-          // Insertion sort, descending by distance.
-          StackEntry x{n.child[i], dist[i]};
-          int j = k++;
-          while (j > 0 && e[j - 1].t < x.t) {
-            e[j] = e[j - 1];
-            --j;
-          }
-          e[j] = x;
-        }
-        for (int j = 0; j < k - 1; ++j) stack[sp++] = e[j];
-        ref = e[k - 1].ref;
+        descend(n, mask, tnear, stack, sp, ref);
         continue;
       }
     } else {
-      r.prepare_triangles(ray);
       c.packets(r, &packets[leaf_first(ref)], leaf_packets(ref), tmin);
     }
     // Pop the next node that may still hold a closer hit.
     for (;;) {
-      if (sp == 0) goto done;
+      if (sp == 0) return c.store(hit);
       const StackEntry& e = stack[--sp];
       if (e.t <= c.best) {
         ref = e.ref;
@@ -272,8 +313,6 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
       }
     }
   }
-done:
-  return c.store(hit);
 }
 
 bool WideBvh::occluded(const Ray& ray) const {
@@ -289,9 +328,14 @@ bool WideBvh::occluded(const Ray& ray) const {
     }
     return false;
   }
+  __m256 tnear;
+  const unsigned root = box_test(r, nodes[0], tmin, tmax, tnear);
+  if (root == 0) return false;
+  r.prepare_triangles(ray);
   std::uint32_t stack[kStackSize];
   int sp = 0;
-  stack[sp++] = 0;
+  for (unsigned mask = root; mask; mask &= mask - 1)
+    stack[sp++] = nodes[0].child[__builtin_ctz(mask)];
   while (sp > 0) {
     const std::uint32_t ref = stack[--sp];
     if (!is_leaf(ref)) {
@@ -301,7 +345,6 @@ bool WideBvh::occluded(const Ray& ray) const {
         stack[sp++] = n.child[__builtin_ctz(mask)];
     } else {
       const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
-      r.prepare_triangles(ray);
       for (std::uint32_t p = first; p < first + count; ++p) {
         __m256 t, e1, e2, inv;
         if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;

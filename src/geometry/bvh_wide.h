@@ -50,6 +50,8 @@ struct BinaryBvh;
 // binary node's children and keeps opening the largest-area inner one until
 // it has 8 (Wald, Benthin, Boulos, "Getting rid of packets", RT 2008).
 WideBvh collapse_to_wide(const BinaryBvh& bin, const std::vector<Triangle>& tris);
+// The same by the SAH-optimal choice of the 8 children (bvh_collapse.cpp).
+WideBvh collapse_to_wide_sah(const BinaryBvh& bin, const std::vector<Triangle>& tris);
 // No tree: every triangle in packets, in their order (brute force).
 WideBvh packets_only(const std::vector<Triangle>& tris);
 
