@@ -67,16 +67,6 @@ std::string check_output(const std::string& path, const char* option) {
   return {};
 }
 
-// Whether two paths name one file: the same file now (a hard or symbolic
-// link, "./x" and "x"), or the same name once created.
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ea, eb;
-  if (fs::equivalent(a, b, ea)) return true;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
-                   cb = fs::weakly_canonical(fs::absolute(b), eb);
-  return !ea && !eb && ca == cb;
-}
-
 std::string number_text(double v) {
   std::ostringstream s;
   s << std::setprecision(12) << v;
@@ -312,6 +302,14 @@ std::string apply_command_line(const CommandLine& cl, Scene& scene) {
   }
   if (cl.intensity) scene.light.intensity = *cl.intensity;
   return {};
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ea, eb;
+  if (fs::equivalent(a, b, ea)) return true;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
+                   cb = fs::weakly_canonical(fs::absolute(b), eb);
+  return !ea && !eb && ca == cb;
 }
 
 bool given(const CommandLine& cl, const char* option) {

@@ -57,6 +57,11 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& settings)
 // scene's target_spp (--target-spp), else one pass.
 std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& settings);
 
+// Whether two paths name one file: the same file now (a hard or symbolic
+// link, "./x" and "x"), or the same name once created. Outputs are checked
+// with it against inputs and each other.
+bool same_file(const std::string& a, const std::string& b);
+
 // Whether a settings option (e.g. "--target-spp") was given.
 bool given(const CommandLine& cl, const char* option);
 

@@ -33,13 +33,6 @@ std::string check_outs(const MergeOptions& o) {
   for (const std::string& out : o.outs) all.push_back("--out " + out);
   if (!o.stats_json.empty()) all.push_back("--stats " + o.stats_json);
   const auto path_of = [](const std::string& a) { return a.substr(a.find(' ') + 1); };
-  const auto same_file = [](const fs::path& a, const fs::path& b) {
-    std::error_code ea, eb;
-    if (fs::equivalent(a, b, ea)) return true;
-    const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
-                   cb = fs::weakly_canonical(fs::absolute(b), eb);
-    return !ea && !eb && ca == cb;
-  };
   for (std::size_t i = 0; i < all.size(); ++i) {
     for (std::size_t j = i + 1; j < all.size(); ++j)
       if (same_file(path_of(all[i]), path_of(all[j])))
