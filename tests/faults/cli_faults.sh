@@ -96,22 +96,28 @@ signal_mid_write() {
   skip "could not catch the write in progress in 5 attempts"
 }
 
+# signal_mid_render SIG CODE: SIG in a long headless render; the passes
+# completed are written to every output, the stats say how many, exit CODE.
+signal_mid_render() {
+  start_long_render
+  kill -"$1" "$pid"
+  wait "$pid"
+  rc=$?
+  expect_rc "$2"
+  expect_err "interrupt"
+  for f in img.png img.pfm stats.json; do [ -f "$f" ] || fail "$f not written after SIG$1"; done
+  pfm_whole img.pfm 128 128
+  passes=$(python3 -c 'import json,sys; print(json.load(open("stats.json"))["passes"])') ||
+    fail "stats.json is not JSON"
+  [ "$passes" -ge 1 ] && [ "$passes" -lt 1000000 ] || fail "stats say $passes passes"
+  no_temp_files
+}
+
 case $case in
   sigint-render-writes-passes-so-far)
     # Ctrl-C in a long headless render: the passes completed are written to
     # every output, the stats say how many, the exit code is 130.
-    start_long_render
-    kill -INT "$pid"
-    wait "$pid"
-    rc=$?
-    expect_rc 130
-    expect_err "interrupt"
-    for f in img.png img.pfm stats.json; do [ -f "$f" ] || fail "$f not written after Ctrl-C"; done
-    pfm_whole img.pfm 128 128
-    passes=$(python3 -c 'import json,sys; print(json.load(open("stats.json"))["passes"])') ||
-      fail "stats.json is not JSON"
-    [ "$passes" -ge 1 ] && [ "$passes" -lt 1000000 ] || fail "stats say $passes passes"
-    no_temp_files
+    signal_mid_render INT 130
     ;;
   sigkill-render-leaves-nothing)
     # A kill -9 mid-render: nothing at the final names, nothing half-written.
@@ -230,15 +236,7 @@ case $case in
   sigterm-render-writes-passes-so-far)
     # SIGTERM (a batch system's stop) in a long headless render: like
     # Ctrl-C, the passes completed are written; the exit code is 128 + 15.
-    start_long_render
-    kill -TERM "$pid"
-    wait "$pid"
-    rc=$?
-    expect_rc 143
-    expect_err "interrupt"
-    for f in img.png img.pfm stats.json; do [ -f "$f" ] || fail "$f not written after SIGTERM"; done
-    pfm_whole img.pfm 128 128
-    no_temp_files
+    signal_mid_render TERM 143
     ;;
   disk-full-sum | disk-full-checkpoint | disk-full-merge)
     # The accumulation file (--out-sum, at the end or as a checkpoint) and
