@@ -90,11 +90,13 @@ int main(int argc, char** argv) {
   }
   CommandLine cl;
   if (const auto code = parse_command_line(argc, argv, cl)) return *code;
-  // While loading, Ctrl-C ends at once (nothing to write yet; a scene read
-  // from a pipe nobody writes would never end otherwise). Once the render
-  // starts, headless: Ctrl-C writes the passes so far; the viewer: ends at
-  // once. Both remove the temporary files of writes in progress.
-  install_signal_handlers(false);
+  // While loading, SIGINT and SIGTERM keep the dispositions the program was
+  // started with: by default they end it at once, in the kernel (nothing is
+  // written yet; a scene read from a pipe nobody writes would never end
+  // otherwise, and a handler can be held back while a call blocks, as under
+  // TSan); a SIG_IGN from nohup stays. Once the render starts, headless:
+  // Ctrl-C writes the passes so far; the viewer: ends at once. Both handlers
+  // remove the temporary files of writes in progress.
   if (const std::string why = missing_scene(cl.scene_name); !why.empty()) return usage_error(why);
   std::error_code ec;
   if (!cl.mesh.empty() && !std::filesystem::is_regular_file(cl.mesh, ec))
@@ -120,6 +122,7 @@ int main(int argc, char** argv) {
       (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0))
     return usage_error("--samples, --resume, --out-sum and --checkpoint need --headless");
   try {
+    if (!cl.headless) install_signal_handlers(false);
     return cl.headless ? headless(cl, scene) : viewer(cl, scene);
   } catch (const std::exception& e) {
     // Output errors (ImageError) and anything unexpected: one line, no crash.
