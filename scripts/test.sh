@@ -41,7 +41,9 @@ sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$'
 # TSan looks for data races, and only the renderer (src/render/progressive.*)
 # starts threads: the suites of the geometry and scene layers, which never
 # do, run under ASan + UBSan only (they are most of the TSan run's time).
-tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz)\."
+# The hard cases too: each is single renders through the same threaded code
+# as the Headless.* tests, checked for numbers (ASan + UBSan run them).
+tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase)\."
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
 sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay)
