@@ -292,6 +292,10 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
 
 std::string apply_command_line(const CommandLine& cl, Scene& scene) {
   for (const SettingField* f : cl.given) copy_field(*f, cl.settings, scene.settings);
+  // --mesh replaces the scene's meshes; with none, it would be ignored silently.
+  if (!cl.mesh.empty() && scene.meshes.empty())
+    return "--mesh " + cut_for_message(cl.mesh) + ": the scene " + cut_for_message(scene.source_path) +
+           " has no meshes to replace";
   if (!cl.light.empty()) {
     const auto v = parse_point(cl.light);
     if (!v) return "--light " + cl.light + ": expected three finite numbers x,y,z";
@@ -329,7 +333,8 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
+std::string check_outputs(const CommandLine& cl, const Scene& scene) {
+  const RenderSettings& s = scene.settings;
   // One rule for where a render stops: --frames N passes, else the target.
   if (cl.frames > 0 && given(cl, "--target-spp"))
     return "--frames " + std::to_string(cl.frames) + " and --target-spp " +
@@ -348,8 +353,18 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
   }
   // No output may replace an input or another output of the same run; the
   // exception: --out-sum X --resume X continues the accumulation in place.
-  const std::pair<std::string, const char*> ins[] = {
+  // The inputs: the scene file, --resume, and every mesh the scene loaded
+  // (from its file's paths or --mesh): --stats cat.obj replaced the mesh.
+  std::vector<std::pair<std::string, const char*>> ins = {
       {resolve_scene(cl.scene_name).string(), "--scene"}, {cl.mesh, "--mesh"}, {cl.resume, "--resume"}};
+  for (const MeshObject& m : scene.meshes) {
+    try {
+      ins.emplace_back(resolve_mesh(m.path, fs::path(scene.source_path).parent_path(), "").string(),
+                       "mesh");
+    } catch (const SceneError&) {
+      // It was found when the scene loaded; nothing to compare if not now.
+    }
+  }
   for (std::size_t i = 0; i < std::size(outs); ++i) {
     const auto& [path, option] = outs[i];
     if (path.empty()) continue;
@@ -379,6 +394,8 @@ std::string check_outputs(const CommandLine& cl, const RenderSettings& s) {
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
       cl.out_sum.empty())
     return "--headless needs at least one of --out, --out-float, --stats, --out-sum";
+  if (!cl.screenshot.empty() && lower_extension(cl.screenshot) != ".png")
+    return "--screenshot " + cl.screenshot + ": must end in .png";
   return {};
 }
 

@@ -50,8 +50,9 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out);
 // wrong ("" if nothing), a one-line message naming the option.
 std::string apply_command_line(const CommandLine& cl, Scene& scene);
 
-// Checks the output paths and the options that go together.
-std::string check_outputs(const CommandLine& cl, const RenderSettings& settings);
+// Checks the output paths and the options that go together; no output may
+// name an input (the scene file, its meshes, --resume).
+std::string check_outputs(const CommandLine& cl, const Scene& scene);
 
 // Samples per pixel a render takes: --frames N passes of --spp, else the
 // scene's target_spp (--target-spp), else one pass.

@@ -84,6 +84,7 @@ std::string missing_scene(const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  ignore_broken_pipes();
   if (argc > 1 && std::string(argv[1]) == "merge") {
     install_signal_handlers(false);
     return run_merge(argc - 1, argv + 1);
@@ -116,7 +117,7 @@ int main(int argc, char** argv) {
   }
   // Command-line settings override the scene file's.
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);
-  if (const std::string why = check_outputs(cl, scene.settings); !why.empty())
+  if (const std::string why = check_outputs(cl, scene); !why.empty())
     return usage_error(why);
   if (!cl.headless &&
       (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0))

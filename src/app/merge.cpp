@@ -42,7 +42,7 @@ std::string check_outs(const MergeOptions& o) {
         return "merge " + all[i] + ": is one of the parts; write the merge elsewhere";
   }
   for (const std::string& out : o.outs) {
-    const auto ext = fs::path(out).extension();
+    const auto ext = lower_extension(out);  // x.PNG too, as in a render
     if (ext != ".exr" && ext != ".pfm" && ext != ".png")
       return "merge --out " + out + ": must end in .exr (accumulation), .pfm or .png";
     if (ext == ".exr" && !have_exr()) return "merge --out " + out + ": this build has no OpenEXR";
@@ -59,7 +59,7 @@ void write(const MergeOptions& o, const Accumulation& acc) {
   const Snapshot snap = snapshot_of(acc);
   const Image img = mean_image(snap);
   for (const std::string& out : o.outs) {
-    const auto ext = fs::path(out).extension();
+    const auto ext = lower_extension(out);
     if (ext == ".exr") write_accumulation(out, acc);
     else if (ext == ".pfm") write_pfm(out, img);
     else write_png(out, img);

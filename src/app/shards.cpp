@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <string>
 
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
@@ -46,7 +47,7 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0) &&
       !cl.headless)
     return "--samples, --resume, --out-sum and --checkpoint need --headless";
-  if (!cl.out_sum.empty() && std::filesystem::path(cl.out_sum).extension() != ".exr")
+  if (!cl.out_sum.empty() && lower_extension(cl.out_sum) != ".exr")  // x.EXR too, as --out-float
     return "--out-sum " + cl.out_sum + ": must end in .exr";
   if (cl.checkpoint >= 0 && cl.out_sum.empty())
     return "--checkpoint needs --out-sum (the file it keeps up to date)";
@@ -81,6 +82,11 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   if (range.end < done.end)
     return "--resume " + cl.resume + ": already holds samples " + ranges_to_string({done}) +
            ", past the " + std::to_string(range.end - range.begin) + " asked for (--frames x --spp)";
+  // A part's header may say anything: the index limit holds for resumed
+  // renders too (a range near 2^64 ran the sample counter past 32 bits).
+  if (range.end > kMaxSample)
+    return "--resume " + cl.resume + ": continuing samples " + ranges_to_string({done}) + " to " +
+           std::to_string(range.end) + " passes the sample index limit 2^30";
   plan.start.first_sample = done.begin;
   plan.start.resume = std::move(acc);
   plan.target = range.end - range.begin;
@@ -109,6 +115,7 @@ void Checkpointer::run() {
   const auto period = std::chrono::duration<double>(std::max(seconds_, 0.05));
   Snapshot snap;
   std::uint64_t written = 0;  // samples in the file
+  std::string warned;  // the last failure told, said once (not 19 lines a second on a full disk)
   std::unique_lock lock(mutex_);
   while (!cv_.wait_for(lock, period, [this] { return stopping_; })) {
     if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.preview ||
@@ -117,8 +124,10 @@ void Checkpointer::run() {
     try {
       write_accumulation(path_, accumulation_of(snap, plan_.start.first_sample, plan_.id));
       written = snap.spp;
+      warned.clear();
     } catch (const ImageError& e) {
-      std::fprintf(stderr, "whisker: warning: checkpoint: %s\n", e.what());
+      if (warned != e.what()) std::fprintf(stderr, "whisker: warning: checkpoint: %s\n", e.what());
+      warned = e.what();
     }
   }
 }

@@ -28,7 +28,9 @@ extern "C" void on_signal(int sig) {
 
 void install_signal_handlers(bool graceful) {
   g_graceful.store(graceful);
-  for (const int sig : {SIGINT, SIGTERM}) {
+  // SIGHUP (the terminal or the ssh session closed) as SIGTERM: it killed a
+  // render with nothing written, and left a write's temporary file behind.
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
     struct sigaction old {};
     if (::sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
     struct sigaction sa {};
@@ -36,9 +38,17 @@ void install_signal_handlers(bool graceful) {
     sigemptyset(&sa.sa_mask);
     sigaddset(&sa.sa_mask, SIGINT);  // one handler at a time
     sigaddset(&sa.sa_mask, SIGTERM);
+    sigaddset(&sa.sa_mask, SIGHUP);
     sa.sa_flags = SA_RESTART;  // reads and writes in progress go on
     ::sigaction(sig, &sa, nullptr);
   }
+}
+
+void ignore_broken_pipes() {
+  struct sigaction sa {};
+  sa.sa_handler = SIG_IGN;
+  sigemptyset(&sa.sa_mask);
+  ::sigaction(SIGPIPE, &sa, nullptr);
 }
 
 int interrupt_signal() { return g_signal.load(); }

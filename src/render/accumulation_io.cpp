@@ -149,8 +149,17 @@ Accumulation read_accumulation(const std::string& path) {
     acc.rays = count_attribute(h, path, "rays");
     acc.seconds = std::strtod(attribute(h, path, "seconds").c_str(), nullptr);
     const Imath::Box2i dw = h.dataWindow();
-    acc.width = dw.max.x - dw.min.x + 1;
-    acc.height = dw.max.y - dw.min.y + 1;
+    // The header's size is checked before the pixels are allocated: a 35 KB
+    // file claiming 40000 x 40000 pixels asked for 51 GB. Renders are at
+    // most 16384 pixels a side and 4096 x 4096 in all (the scene reader's limits).
+    const long long w = (long long)dw.max.x - dw.min.x + 1;
+    const long long hgt = (long long)dw.max.y - dw.min.y + 1;
+    if (w < 1 || hgt < 1 || w > 16384 || hgt > 16384 || w * hgt > 4096LL * 4096LL)
+      throw AccumulationError(path + ": header gives " + std::to_string(w) + " x " +
+                              std::to_string(hgt) +
+                              " pixels; an accumulation file is at most 4096 x 4096 (damaged?)");
+    acc.width = int(w);
+    acc.height = int(hgt);
     const std::size_t pixels = std::size_t(acc.width) * acc.height;
     std::vector<std::uint32_t> words[4];
     Imf::FrameBuffer fb;

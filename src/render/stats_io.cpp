@@ -43,7 +43,9 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
             j[key] = v;
         },
         value);
-  write_bytes_atomically(path, j.dump(2) + "\n");
+  // The scene name may come from a file name or a part's header, in any
+  // bytes: what is not UTF-8 is written as U+FFFD (dump would throw).
+  write_bytes_atomically(path, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace whisker

@@ -63,6 +63,20 @@ struct Scan {
   std::vector<double> coords;  // the vertices' coordinates, read in double
 };
 
+// The three numbers of a "v" or "vn" line, each finite in float (what the
+// renderer keeps), appended to `out` if given.
+void three_numbers(std::string_view& rest, const std::string& path, std::size_t line_no,
+                   const std::string& what, std::vector<double>* out) {
+  for (int i = 0; i < 3; ++i) {
+    const std::string tok(next_token(rest));
+    char* e = nullptr;
+    const double x = tok.empty() ? 0.0 : std::strtod(tok.c_str(), &e);
+    if (tok.empty() || e != tok.c_str() + tok.size()) fail(path, line_no, what + " needs three numbers");
+    if (!std::isfinite(float(x))) fail(path, line_no, what + " coordinate is NaN or infinite");
+    if (out) out->push_back(x);
+  }
+}
+
 // Checks every line: known keyword, finite numeric vertex coordinates, face
 // indices in range (negative ones relative to the vertices read so far).
 Scan scan(const std::string& path, const std::string& text) {
@@ -87,16 +101,11 @@ Scan scan(const std::string& path, const std::string& text) {
     if (!known_keyword(key))
       fail(path, line_no, "unrecognised line '" + std::string(trim(line.substr(0, 40))) + "'");
     if (key == "v") {
-      for (int i = 0; i < 3; ++i) {
-        const std::string tok(next_token(rest));
-        char* e = nullptr;
-        const double x = tok.empty() ? 0.0 : std::strtod(tok.c_str(), &e);
-        if (tok.empty() || e != tok.c_str() + tok.size())
-          fail(path, line_no, "vertex needs three numbers");
-        if (!std::isfinite(float(x))) fail(path, line_no, "vertex coordinate is NaN or infinite");
-        s.coords.push_back(x);
-      }
+      three_numbers(rest, path, line_no, "vertex", &s.coords);
       ++s.vertices;
+    } else if (key == "vn") {
+      // tinyobjloader reads what it can; a NaN normal shaded its triangles black.
+      three_numbers(rest, path, line_no, "normal", nullptr);
     } else if (key == "f") {
       int corners = 0;
       for (std::string_view tok = next_token(rest); !tok.empty(); tok = next_token(rest)) {

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <unordered_set>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -57,8 +58,18 @@ void read_camera(const Fields& c, Camera& cam) {
                                  " pixels is more than 4096 x 4096");
   // As the camera frame will compute them (camera.h).
   if (cam.look_at == cam.position) c.fail(c.field("look_at"), "must differ from camera.position");
-  const vec3 side = glm::cross(view_direction(cam), cam.up);
+  const vec3 forward = view_direction(cam);
+  const vec3 side = glm::cross(forward, cam.up);
   if (side == vec3(0.0f)) c.fail(c.field("up"), "must not be parallel to the view direction");
+  // The frame in float, as the camera builds it: an up of length 1e-30 or
+  // 1e30 passed the checks above and gave NaN rays, a black image.
+  const vec3 right = glm::normalize(side), up = glm::cross(right, forward);
+  const auto finite = [](const vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite(right) || !finite(up) || glm::dot(right, right) < 0.5f || glm::dot(up, up) < 0.5f)
+    c.fail(c.field("up"), "too short or too long to build the camera frame in float; give a "
+                          "length near 1");
 }
 
 std::string line_column(const std::string& text, std::size_t byte) {
@@ -75,6 +86,69 @@ std::string line_column(const std::string& text, std::size_t byte) {
 }
 
 fs::path source_root() { return fs::path(WHISKER_SOURCE_DIR); }
+
+// Finds a key given twice in one object, which the JSON parser would take
+// silently, keeping the last ({"width": 64, "width": 8192}): a callback of
+// the parse, remembering the keys of every object open and where it is.
+class DuplicateKeys {
+ public:
+  bool operator()(int, json::parse_event_t event, json& parsed) {
+    using E = json::parse_event_t;
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        element();
+        open_.push_back({event == E::object_start, {}, 0, {}});
+        break;
+      case E::object_end:
+      case E::array_end:
+        if (!open_.empty()) open_.pop_back();
+        break;
+      case E::key:
+        if (!open_.empty()) {
+          Open& o = open_.back();
+          o.key = parsed.is_string() ? parsed.get<std::string>() : std::string();
+          if (!o.keys.insert(o.key).second && found_.empty()) found_ = field(o.key);
+        }
+        break;
+      case E::value:
+        element();
+        break;
+    }
+    return true;
+  }
+  // "camera.width" of the first duplicate, or "".
+  const std::string& found() const { return found_; }
+
+ private:
+  struct Open {
+    bool object;
+    std::string key;         // the object's key being read
+    std::size_t index;       // the array's elements so far
+    std::unordered_set<std::string> keys;
+  };
+  void element() {
+    if (!open_.empty() && !open_.back().object) ++open_.back().index;
+  }
+  // The path of `key` in the innermost object open.
+  std::string field(const std::string& key) const {
+    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + s.
+    std::string path;
+    for (std::size_t i = 0; i + 1 < open_.size(); ++i) {
+      if (open_[i].object) {
+        if (!path.empty()) path.push_back('.');
+        path.append(cut_for_message(open_[i].key, 60));
+      } else {
+        path.push_back('[');
+        path.append(std::to_string(open_[i].index - 1)).push_back(']');
+      }
+    }
+    if (!path.empty()) path.push_back('.');
+    return path.append(cut_for_message(key));
+  }
+  std::vector<Open> open_;
+  std::string found_;
+};
 
 }  // namespace
 
@@ -122,8 +196,11 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,
                   const std::string& mesh_override) {
   json j;
+  DuplicateKeys duplicates;
   try {
-    j = json::parse(text);
+    j = json::parse(text, [&duplicates](int depth, json::parse_event_t event, json& parsed) {
+      return duplicates(depth, event, parsed);
+    });
   } catch (const json::parse_error& e) {
     std::string msg = e.what();
     // Keep nlohmann's description, drop its "[json.exception...] parse error at ...:" prefix.
@@ -135,6 +212,9 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     if (auto bracket = msg.find("] "); bracket != std::string::npos) msg = msg.substr(bracket + 2);
     throw SceneError(file + ": invalid JSON: " + msg);
   }
+
+  if (!duplicates.found().empty())
+    throw SceneError(file + ": " + duplicates.found() + ": given twice; keep one");
 
   Scene scene;
   scene.source_path = file;
@@ -272,7 +352,9 @@ std::string scene_to_json(const Scene& s) {
                              {"vertex_normals", m.vertex_normals},
                              {"material", to_json(m.material)}});
   }
-  return j.dump(2);
+  // A name from a file name (the scene's stem, a --mesh path) may hold bytes
+  // that are not UTF-8; they are written as U+FFFD rather than thrown on.
+  return j.dump(2, ' ', false, json::error_handler_t::replace);
 }
 
 }  // namespace whisker

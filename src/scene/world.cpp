@@ -10,6 +10,25 @@
 
 namespace whisker {
 
+namespace {
+
+// A file's vertex normal as a unit vector. Float normalising (as always for
+// ordinary normals) fails for a length whose square leaves float's range
+// (1e-30, 1e20: NaN or zero, a black triangle); those are scaled and
+// normalised in double. A zero normal has no direction: the triangle's own
+// normal `fallback` stands in.
+vec3 unit_normal(const vec3& v, const vec3& fallback) {
+  const vec3 u = glm::normalize(v);
+  if (std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) && glm::dot(u, u) > 0.5f)
+    return u;
+  const glm::dvec3 d(v);
+  const double m = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
+  if (!(m > 0.0) || !std::isfinite(m)) return fallback;
+  return vec3(glm::normalize(d / m));
+}
+
+}  // namespace
+
 BvhMethod bvh_method(AccelKind k) {
   switch (k) {
     case AccelKind::Brute: return BvhMethod::Brute;
@@ -95,8 +114,8 @@ void World::build_mesh(const Scene& scene, BvhMethod method) {
         std::array<vec3, 3> cn{n, n, n};
         if (!mesh.normal_idx.empty()) {
           const glm::uvec3 ni = mesh.normal_idx[t];
-          cn = {glm::normalize(mesh.normals[ni.x]), glm::normalize(mesh.normals[ni.y]),
-                glm::normalize(mesh.normals[ni.z])};
+          cn = {unit_normal(mesh.normals[ni.x], n), unit_normal(mesh.normals[ni.y], n),
+                unit_normal(mesh.normals[ni.z], n)};
         }
         data->ns.push_back(cn);
       }

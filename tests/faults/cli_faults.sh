@@ -433,6 +433,180 @@ with open('poly.obj', 'w') as f:
       rm -f s.json
     done
     ;;
+  sighup-render-writes-passes-so-far)
+    # SIGHUP (the terminal or the ssh session closed) in a long headless
+    # render: like SIGTERM, the passes completed are written; exit 128 + 1.
+    signal_mid_render HUP 129
+    ;;
+  sigpipe-reader-gone)
+    # The reader of the progress or of the summary line went away (a pipe
+    # into `head -c1`): the render goes on and writes its outputs, exit 0.
+    scene 64 64
+    "$bin" --headless --scene scene.json --frames 300 --spp 1 --progress 0.02 --out img.png \
+      --stats stats.json 2>&1 | head -c1 >/dev/null
+    rc=${PIPESTATUS[0]}
+    expect_rc 0
+    for f in img.png stats.json; do [ -s "$f" ] || fail "$f not written when the progress reader left"; done
+    rm -f img.png
+    "$bin" --headless --scene scene.json --quiet --frames 1 --out img.png | true
+    rc=${PIPESTATUS[0]}
+    expect_rc 0
+    [ -s img.png ] || fail "img.png not written when the summary's reader left"
+    no_temp_files
+    ;;
+  outputs-never-clobber-scene-meshes)
+    # A mesh the scene file names (not given with --mesh) is an input too:
+    # --stats tri.obj replaced it with JSON, exit 0.
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >tri.obj
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "tri.obj"}]}' >mesh.json
+    sum=$(md5sum tri.obj)
+    for out in tri.obj ./tri.obj "$PWD/tri.obj"; do
+      run --headless --scene mesh.json --quiet --frames 1 --stats "$out"
+      expect_rc 2
+      expect_err "^whisker: --stats $out: is the mesh input"
+      [ "$sum" = "$(md5sum tri.obj)" ] || fail "--stats $out changed the scene's mesh"
+    done
+    ;;
+  mesh-option-needs-meshes)
+    # --mesh on a scene without meshes was ignored silently (even a file that
+    # cannot be read): refused, naming the option and the scene.
+    scene 16 16
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >tri.obj
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --mesh tri.obj
+    expect_rc 2
+    expect_err "^whisker: --mesh tri.obj: .*scene.json.*no meshes"
+    [ ! -e s.json ] || fail "rendered although --mesh had nothing to replace"
+    ;;
+  output-extensions)
+    # Extensions are read in any case for every output (x.EXR was refused by
+    # --out-sum and M.PNG by merge, while --out-float took x.EXR), and a
+    # --screenshot not ending in .png is refused (a PNG was written as .txt).
+    have_exr || skip "this build has no OpenEXR"
+    scene 16 16
+    run --headless --scene scene.json --quiet --spp 1 --samples 0:1 --out-sum P1.EXR
+    expect_rc 0
+    run merge P1.EXR --out M.PNG --out M.EXR --out M.Pfm
+    expect_rc 0
+    for f in M.PNG M.EXR M.Pfm; do [ -s "$f" ] || fail "merge did not write $f"; done
+    pfm_whole M.Pfm 16 16
+    run --scene scene.json --frames 1 --screenshot shot.txt
+    expect_rc 2
+    expect_err "^whisker: --screenshot shot.txt: must end in .png"
+    [ ! -e shot.txt ] || fail "shot.txt written"
+    ;;
+  scene-duplicate-keys)
+    # A key given twice in one object was taken silently, the last winning
+    # ("width": 16 ... "width": 4096): refused, naming the field.
+    for body in '{"camera": {"width": 16, "height": 16, "width": 4096}}|camera.width' \
+                '{"name": "a", "name": "b"}|name' \
+                '{"spheres": [{"center": [0,0,0], "radius": 1, "material": {"type": "mirror", "type": "glass"}}]}|spheres\[0\]\.material\.type' \
+                '{"description": [1, {"a": 1, "a": 2}]}|description\[1\]\.a'; do
+      printf '%s' "${body%|*}" >dup.json
+      run --headless --scene dup.json --quiet --frames 1 --stats s.json
+      expect_rc 2
+      expect_err "^whisker: dup.json: ${body##*|}: given twice"
+    done
+    echo '{"a": {"k": 1}, "b": {"k": 2}, "description": [{"k": 1}, {"k": 2}]}' >same.json
+    run --headless --scene same.json --quiet --frames 1 --stats s.json
+    expect_err "unknown key"  # the same key in different objects is no duplicate
+    ;;
+  camera-up-degenerate)
+    # An up vector whose length squared leaves float's range passed the
+    # checks and gave NaN rays: a black image, exit 0. Refused, naming it.
+    for up in '[1e-30, 0, 0]' '[0, 1e-40, 0]' '[1e30, 1e30, 0]'; do
+      echo "{\"camera\": {\"up\": $up, \"width\": 16, \"height\": 16}}" >up.json
+      run --headless --scene up.json --quiet --frames 1 --stats s.json
+      expect_rc 2
+      expect_err "^whisker: up.json: camera.up: "
+      [ ! -e s.json ] || fail "up $up rendered"
+    done
+    echo '{"camera": {"up": [0, 1e-3, 0], "width": 16, "height": 16}}' >up.json
+    run --headless --scene up.json --quiet --frames 1 --stats s.json
+    expect_rc 0
+    ;;
+  non-utf8-names)
+    # File names may hold any bytes: a scene named by its file's stem, or a
+    # --mesh path, that is not UTF-8 made every render fail after loading
+    # with the JSON library's message ("type_error.316"), naming nothing.
+    scene 16 16
+    sed 's/"name": "faults", //' scene.json >$'\xff.json'
+    printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >$'m\xfe.obj'
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "x.obj"}]}' >mesh.json
+    run --headless --scene $'./\xff.json' --quiet --frames 1 --out a.png --stats a.json
+    expect_rc 0
+    python3 -c 'import json,sys; json.load(open("a.json"))' 2>/dev/null || fail "a.json is not JSON"
+    run --headless --scene mesh.json --mesh $'m\xfe.obj' --quiet --frames 1 --stats b.json
+    expect_rc 0
+    [ -s a.png ] && [ -s b.json ] || fail "outputs missing"
+    ;;
+  obj-bad-normals)
+    # "vn" lines were not checked: a NaN normal rendered its triangles black
+    # (exit 0). Refused naming the line; a zero, tiny or huge normal (whose
+    # float normalising fails) stands for the triangle's own normal.
+    printf 'v -20 -20 0\nv 20 -20 0\nv 0 20 0\nvn nan 0 1\nf 1//1 2//1 3//1\n' >nan.obj
+    printf 'v -20 -20 0\nv 20 -20 0\nv 0 20 0\nvn 0 1\nf 1//1 2//1 3//1\n' >two.obj
+    for obj in nan.obj two.obj; do
+      echo "{\"camera\": {\"width\": 16, \"height\": 16}, \"meshes\": [{\"path\": \"$obj\", \"vertex_normals\": true}]}" >n.json
+      run --headless --scene n.json --quiet --frames 1 --stats s.json
+      expect_rc 2
+      expect_err "^whisker: n.json: meshes\[0\].path: .*$obj:4: normal"
+    done
+    for vn in '0 0 1' '0 0 0' '0 0 1e-30' '0 0 1e25'; do
+      printf 'v -20 -20 0\nv 20 -20 0\nv 0 20 0\nvn %s\nf 1//1 2//1 3//1\n' "$vn" >n.obj
+      echo '{"camera": {"width": 16, "height": 16}, "light": {"position": [0, 0, 40]}, "meshes": [{"path": "n.obj", "vertex_normals": true}]}' >n.json
+      run --headless --scene n.json --quiet --frames 1 --out-float "n-${vn// /_}.pfm"
+      expect_rc 0
+    done
+    for vn in 0_0_0 0_0_1e-30 0_0_1e25; do
+      cmp -s "n-$vn.pfm" n-0_0_1.pfm || fail "vn ${vn//_/ } did not shade as the face normal"
+    done
+    ;;
+  accumulation-damaged-header)
+    # A part whose header claims 40000 x 40000 pixels (35 KB on disk) had
+    # its 51 GB allocated before the read failed; one whose sample range
+    # lies past 2^32 was resumed, the sample counter running past 32 bits.
+    have_exr || skip "this build has no OpenEXR"
+    scene 64 64  # big enough that the claimed size's line offset table is there to read
+    run --headless --scene scene.json --quiet --spp 1 --samples 1000000000:1000000002 --out-sum p.exr
+    expect_rc 0
+    python3 - <<'PY' || skip "python3 missing"
+import struct
+d = bytearray(open('p.exr', 'rb').read())
+tag = b'dataWindow\x00box2i\x00'
+k = d.find(tag) + len(tag) + 4
+big = d[:k] + struct.pack('<4i', 0, 0, 39999, 39999) + d[k + 16:]
+open('big.exr', 'wb').write(big)
+assert d.count(b'1000000000:1000000002') == 1
+open('far.exr', 'wb').write(bytes(d).replace(b'1000000000:1000000002', b'9000000000:9000000002'))
+PY
+    limit=(ulimit -v 3000000)
+    ! ldd "$bin" 2>/dev/null | grep -q 'lib[at]san' || limit=(true)
+    for cmd in "merge big.exr --out m.png" \
+               "--headless --scene scene.json --quiet --frames 1 --resume big.exr --out-sum r.exr"; do
+      # shellcheck disable=SC2086
+      ("${limit[@]}"; timeout -s KILL 20 "$bin" $cmd >out.txt 2>err.txt)
+      rc=$?
+      expect_rc 2
+      expect_err "^whisker: .*big.exr: header gives 40000 x 40000 pixels"
+    done
+    run --headless --scene scene.json --quiet --spp 1 --frames 4 --resume far.exr --out-sum r.exr
+    expect_rc 2
+    expect_err "^whisker: --resume far.exr: .*sample index limit"
+    [ ! -e r.exr ] || fail "far.exr was resumed"
+    ;;
+  checkpoint-warns-once)
+    # A --checkpoint that cannot be written warned on every pass (19 lines a
+    # second at --checkpoint 0 on a full disk): the same failure is told once.
+    have_exr || skip "this build has no OpenEXR"
+    need_root_mount full 64k
+    scene 32 32
+    dd if=/dev/zero of=full/filler bs=1k count=64 2>/dev/null
+    run --headless --scene scene.json --quiet --threads 1 --frames 400 --out-sum full/sum.exr --checkpoint 0
+    expect_rc 2
+    n=$(grep -c 'warning: checkpoint' err.txt)
+    [ "$n" -le 1 ] || fail "the checkpoint failure was told $n times"
+    no_temp_files full
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;

@@ -10,7 +10,10 @@ set(WHISKER_FAULT_CASES
   sigterm-render-writes-passes-so-far disk-full-sum disk-full-checkpoint disk-full-merge
   special-targets-every-option long-output-names
   outputs-never-clobber-inputs signal-while-loading scene-device-files huge-polygon
-  messages-one-line empty-option-values)
+  messages-one-line empty-option-values
+  sighup-render-writes-passes-so-far sigpipe-reader-gone outputs-never-clobber-scene-meshes
+  mesh-option-needs-meshes output-extensions scene-duplicate-keys camera-up-degenerate
+  non-utf8-names obj-bad-normals accumulation-damaged-header checkpoint-warns-once)
 foreach(c ${WHISKER_FAULT_CASES})
   add_test(NAME Faults.${c}
     COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/cli_faults.sh $<TARGET_FILE:whisker> ${c})
