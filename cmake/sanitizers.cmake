@@ -17,7 +17,9 @@ endif()
 
 if(DEFINED _whisker_san)
   # -g1: line tables are all a sanitizer report needs, and compile faster than -g.
-  add_compile_options(${_whisker_san} -fno-omit-frame-pointer -g1)
+  # -O1 (after the build type's -O2, so it wins): the instrumented build
+  # compiles in about 2/3 of the time, and ASan's own guide suggests it.
+  add_compile_options(${_whisker_san} -fno-omit-frame-pointer -g1 -O1)
   add_link_options(${_whisker_san})
   # Suppression files for third-party noise, found by the tests' environment
   # (scripts/test.sh --sanitize sets the *SAN_OPTIONS that point at them).
