@@ -20,6 +20,23 @@ BvhMethod bvh_method(AccelKind k) {
   return BvhMethod::Sah;
 }
 
+namespace {
+
+// An OBJ normal of any length made unit: first scaled by the power of two
+// (exact) that puts its largest component in [1, 2), as glm::normalize
+// squares it in float (a normal 1e30 or 1e-23 long overflowed or underflowed
+// to a NaN shading normal: black pixels, NaN bounce rays). A zero or
+// non-finite normal has no direction: it stays zero, so the corner adds
+// nothing to the interpolated normal (record_triangle).
+vec3 unit_or_zero(vec3 v) {
+  const float m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(m > 0.0f) || !std::isfinite(m)) return vec3(0.0f);
+  const int e = -std::ilogb(m);
+  return glm::normalize(vec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)));
+}
+
+}  // namespace
+
 World::World(const Scene& scene, const World* reuse) {
   origin_ = glm::dvec3(scene.camera.position);
   const auto here = [&](const glm::dvec3& p) { return to_render(p); };
@@ -95,8 +112,8 @@ void World::build_mesh(const Scene& scene, BvhMethod method) {
         std::array<vec3, 3> cn{n, n, n};
         if (!mesh.normal_idx.empty()) {
           const glm::uvec3 ni = mesh.normal_idx[t];
-          cn = {glm::normalize(mesh.normals[ni.x]), glm::normalize(mesh.normals[ni.y]),
-                glm::normalize(mesh.normals[ni.z])};
+          cn = {unit_or_zero(mesh.normals[ni.x]), unit_or_zero(mesh.normals[ni.y]),
+                unit_or_zero(mesh.normals[ni.z])};
         }
         data->ns.push_back(cn);
       }
@@ -210,7 +227,11 @@ void World::record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) con
   out.ns = out.ng;
   if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
     const auto& cn = m.ns[hit.prim];
-    out.ns = glm::normalize(b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2]);
+    // Corners whose normals cancel (or are zero) leave no direction: the
+    // geometric normal then, not the NaN of normalising zero.
+    const vec3 ns = b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2];
+    const float len2 = glm::dot(ns, ns);
+    if (len2 > 0.0f && len2 < kInf) out.ns = glm::normalize(ns);
   }
   out.material = &mesh_material_[obj];
   out.sphere = kNoSkip;
