@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -442,6 +443,28 @@ TEST(Bvh, EmptyAndSingle) {
     EXPECT_EQ(h.prim, 0u);
     EXPECT_TRUE(one.occluded(Ray{}));
     EXPECT_FALSE(one.occluded(Ray{{0, 0, 0}, {0, 0, -1}, 0.0f, 3.0f}));
+  }
+}
+
+TEST(Bvh, NonFiniteRaysHitNothingAndStayInTheTree) {
+  // A ray with a NaN in its direction or origin (a degenerate shading normal
+  // upstream) must miss, not enter every box: an unused child slot's box is
+  // inverted, and a slab test that lets NaN through descends into it, a read
+  // far outside the tree (a crash on a two-triangle mesh).
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<Triangle> two = {{{-1, -1, -3}, {1, -1, -3}, {0, 1, -3}},
+                                     {{-1, -1, -4}, {1, -1, -4}, {0, 1, -4}}};
+  const IndexedMesh ball = icosphere(3, vec3(0.0f), 1.0f);
+  for (const auto& tris : {two, ball.triangles()}) {
+    for (BvhMethod kind : kAll) {
+      const Bvh bvh = Bvh::build(tris, kind);
+      for (const Ray& r : {Ray{{0, 0, 0}, {nan, nan, nan}}, Ray{{0, 0, 0}, {0, nan, -1}},
+                           Ray{{nan, 0, 0}, {0, 0, -1}}, Ray{{0, 0, 0}, {0, 0, -1}, 0.0f, nan}}) {
+        Hit h;
+        EXPECT_FALSE(bvh.intersect(r, h)) << name(kind);
+        EXPECT_FALSE(bvh.occluded(r)) << name(kind);
+      }
+    }
   }
 }
 

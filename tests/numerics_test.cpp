@@ -3,6 +3,7 @@
 // and render space's invariance under moving the scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -185,6 +186,33 @@ TEST(Numerics, RenderSpaceMakesAMovedSceneRenderTheSame) {
   moved.light.position += t;
   for (auto& s : moved.spheres) s.center += t;
   EXPECT_EQ(direct_image(scene, 48), direct_image(moved, 48));
+}
+
+TEST(Numerics, CameraBasisOfAnyUpLengthAndNearlyVerticalView) {
+  // The scene file takes `up` of any length in [1e-30, 1e30]: the image must
+  // not depend on it. Squared in float, an up of 1e-23 underflowed (a NaN
+  // basis, a black image) and one of 1e20 overflowed (a zero basis).
+  Scene scene = load_scene(resolve_scene("three-balls"));
+  const std::vector<float> ref = direct_image(scene, 16);
+  for (const float k : {1e-23f, 1e-30f, 1e20f, 1e30f}) {
+    Scene s = scene;
+    s.camera.up *= k;
+    EXPECT_EQ(direct_image(s, 16), ref) << "up times " << k;
+  }
+  // A view straight down with look_at 1e-30 off the vertical: the side
+  // vector is 2e-32 long, not zero; the frame must be orthonormal.
+  Camera c = scene.camera;
+  c.position = {0.0, 55.0, 0.0};
+  c.look_at = {1e-30, 0.0, 0.0};
+  const CameraFrame cam(c);
+  EXPECT_NEAR(glm::length(cam.right), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::length(cam.up), 1.0f, 1e-6f);
+  EXPECT_NEAR(glm::dot(cam.right, cam.forward), 0.0f, 1e-6f);
+  Scene down = scene;
+  down.camera = c;
+  for (const float v : direct_image(down, 16)) EXPECT_TRUE(std::isfinite(v));
+  const std::vector<float> img = direct_image(down, 16);
+  EXPECT_GT(*std::max_element(img.begin(), img.end()), 0.0f);  // the floor is lit
 }
 
 }  // namespace

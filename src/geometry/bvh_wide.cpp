@@ -28,6 +28,18 @@ inline float safe_inv(float d) {
   return 1.0f / d;
 }
 
+// False for a ray with a NaN in its origin, direction or bounds. Such a ray
+// meets nothing, and must be stopped before the slab test: there a NaN
+// distance drops out of max/min (they return their other operand), so the
+// ray would enter every child, the unused slots too, whose reference is no
+// node (kEmptyRef): a read far outside the tree.
+inline bool traceable(const Ray& r) {
+  const float v[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
+  bool ok = true;
+  for (const float x : v) ok &= !std::isnan(x);
+  return ok;
+}
+
 constexpr int kStackSize = 512;  // 7 entries per level, depth <= 72 (bvh_build.cpp)
 
 struct StackEntry {
@@ -275,7 +287,7 @@ inline std::uint32_t leaf_packets(std::uint32_t ref) { return ((ref >> 24) & 0x7
 #ifdef WHISKER_BVH_AVX2
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
-  if (packets.empty()) return false;
+  if (packets.empty() || !traceable(ray)) return false;
   RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
   Closest c(std::min(ray.tmax, hit.t));
@@ -316,7 +328,7 @@ bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
 }
 
 bool WideBvh::occluded(const Ray& ray) const {
-  if (packets.empty()) return false;
+  if (packets.empty() || !traceable(ray)) return false;
   RayAvx r(ray);
   const __m256 tmin = _mm256_set1_ps(ray.tmin);
   const __m256 tmax = _mm256_set1_ps(ray.tmax);
@@ -387,7 +399,7 @@ inline Triangle packet_tri(const TriPacket& p, int i) {
 }  // namespace
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
-  if (packets.empty()) return false;
+  if (packets.empty() || !traceable(ray)) return false;
   const RayScalar r(ray);
   float best = std::min(ray.tmax, hit.t);
   bool found = false;

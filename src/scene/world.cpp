@@ -10,25 +10,6 @@
 
 namespace whisker {
 
-namespace {
-
-// A file's vertex normal as a unit vector. Float normalising (as always for
-// ordinary normals) fails for a length whose square leaves float's range
-// (1e-30, 1e20: NaN or zero, a black triangle); those are scaled and
-// normalised in double. A zero normal has no direction: the triangle's own
-// normal `fallback` stands in.
-vec3 unit_normal(const vec3& v, const vec3& fallback) {
-  const vec3 u = glm::normalize(v);
-  if (std::isfinite(u.x) && std::isfinite(u.y) && std::isfinite(u.z) && glm::dot(u, u) > 0.5f)
-    return u;
-  const glm::dvec3 d(v);
-  const double m = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
-  if (!(m > 0.0) || !std::isfinite(m)) return fallback;
-  return vec3(glm::normalize(d / m));
-}
-
-}  // namespace
-
 BvhMethod bvh_method(AccelKind k) {
   switch (k) {
     case AccelKind::Brute: return BvhMethod::Brute;
@@ -38,6 +19,23 @@ BvhMethod bvh_method(AccelKind k) {
   }
   return BvhMethod::Sah;
 }
+
+namespace {
+
+// An OBJ normal of any length made unit: first scaled by the power of two
+// (exact) that puts its largest component in [1, 2), as glm::normalize
+// squares it in float (a normal 1e30 or 1e-23 long overflowed or underflowed
+// to a NaN shading normal: black pixels, NaN bounce rays). A zero or
+// non-finite normal has no direction: it stays zero, so the corner adds
+// nothing to the interpolated normal (record_triangle).
+vec3 unit_or_zero(vec3 v) {
+  const float m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(m > 0.0f) || !std::isfinite(m)) return vec3(0.0f);
+  const int e = -std::ilogb(m);
+  return glm::normalize(vec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)));
+}
+
+}  // namespace
 
 World::World(const Scene& scene, const World* reuse) {
   origin_ = glm::dvec3(scene.camera.position);
@@ -114,8 +112,8 @@ void World::build_mesh(const Scene& scene, BvhMethod method) {
         std::array<vec3, 3> cn{n, n, n};
         if (!mesh.normal_idx.empty()) {
           const glm::uvec3 ni = mesh.normal_idx[t];
-          cn = {unit_normal(mesh.normals[ni.x], n), unit_normal(mesh.normals[ni.y], n),
-                unit_normal(mesh.normals[ni.z], n)};
+          cn = {unit_or_zero(mesh.normals[ni.x]), unit_or_zero(mesh.normals[ni.y]),
+                unit_or_zero(mesh.normals[ni.z])};
         }
         data->ns.push_back(cn);
       }
@@ -229,7 +227,11 @@ void World::record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) con
   out.ns = out.ng;
   if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
     const auto& cn = m.ns[hit.prim];
-    out.ns = glm::normalize(b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2]);
+    // Corners whose normals cancel (or are zero) leave no direction: the
+    // geometric normal then, not the NaN of normalising zero.
+    const vec3 ns = b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2];
+    const float len2 = glm::dot(ns, ns);
+    if (len2 > 0.0f && len2 < kInf) out.ns = glm::normalize(ns);
   }
   out.material = &mesh_material_[obj];
   out.sphere = kNoSkip;

@@ -858,6 +858,40 @@ def case_subdivided_cat(run):
                f"{n} of 4096 pixels differ (allowed 8); mean {mi:.6g} against {mr:.6g}")
 
 
+def case_vertex_normals(run):
+    """An OBJ's vertex normals of any length shade as unit ones: a quad whose
+    normals are all (0, 1, 0) times 1e30, 1e20, 1e-23 or 1e-30 (float squares
+    overflow or underflow) renders as with unit normals, with indirect light
+    (NaN shading normals gave NaN bounce rays, which crashed the traversal);
+    and a zero normal at one corner adds nothing: no NaN, the same image."""
+    def quad(path, normals):
+        path.write_text("v -10 0 -10\nv 10 0 -10\nv 10 0 10\nv -10 0 10\n" +
+                        "".join(f"vn {a!r} {b!r} {c!r}\n" for a, b, c in normals) +
+                        "f 1//1 3//3 2//2\nf 1//1 4//4 3//3\n")
+
+    def mk(path):
+        return scene_of("vertex-normals", [diffuse("ball", [0, 2, 0], 2, [1, 1, 1])],
+                        camera((0, 8, 12), (0, 0, 0), 60), {"position": [3, 10, 4], "intensity": 2e4},
+                        meshes=[{"name": "quad", "path": str(path), "vertex_normals": True,
+                                 "material": {"type": "diffuse", "albedo": [1, 1, 1]}}],
+                        indirect=True)
+    unit = run.dir / "quad-unit.obj"
+    quad(unit, [(0.0, 1.0, 0.0)] * 4)
+    ref, _ = run.render(mk(unit), spp=2)
+    for what, normals in [(f"normals {k:g} long", [(0.0, k, 0.0)] * 4) for k in (1e30, 1e20, 1e-23, 1e-30)] + [
+            ("a zero normal at one corner", [(0.0, 1.0, 0.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 1.0, 0.0)])]:
+        path = run.dir / f"quad-{len(what)}-{what[:12].replace(' ', '_')}.obj"
+        quad(path, normals)
+        try:
+            img, st = run.render(mk(path), spp=2)
+        except RuntimeError as e:
+            yield (f"quad with {what}", False, str(e)[-120:])
+            continue
+        n = differing_pixels(img, ref, levels=0.5)
+        yield (f"quad with {what}", n == 0 and st["nan_count"] == 0,
+               f"{n} of 4096 pixels differ from unit normals, nan_count {st['nan_count']}")
+
+
 CASES = {
     "offset": case_offset,
     "scale": case_scale,
@@ -876,6 +910,7 @@ CASES = {
     "glass-far": case_glass_far,
     "noise-free-error": case_noise_free_error,
     "subdivided-cat": case_subdivided_cat,
+    "vertex-normals": case_vertex_normals,
 }
 
 
