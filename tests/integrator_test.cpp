@@ -451,6 +451,28 @@ TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
   EXPECT_EQ(rays, 1u);
 }
 
+// I cos / d^2 leaves float's range before the 1/(4 pi^2) brings the term
+// back into it (here 1e29 / 1e-10 = 1e39): the term is finite and right, not
+// an infinity whose product with a zero channel was a NaN, a dropped sample.
+TEST(DirectLight, ABrightLightCloseAboveTheSurfaceIsFiniteAndMatchesTheFormula) {
+  Scene s;
+  s.spheres.push_back({"ball", vec3(0.0f), 1.0f, 0.0f, {MaterialKind::Diffuse, vec3(0.5f)}});
+  s.light = {vec3(0.0f, 1.00001f, 0.0f), 1e29f};
+  const World world(s);
+  const vec3 up(0.0f, 1.0f, 0.0f);
+  const SurfaceHit h = on_ball(world, up);
+  // The formula in double, from the render-space floats the term is made of.
+  const glm::dvec3 to = glm::dvec3(world.light().position) - glm::dvec3(h.p);
+  const double d2 = glm::dot(to, to), cos_s = to.y / std::sqrt(d2);
+  const double expect = 1e29 * cos_s / (4.0 * kPi * kPi * d2);
+  ASSERT_LT(expect, 3e38);
+  ASSERT_GT(1e29 * cos_s / d2, 3.5e38);  // the case: the partial product overflows float
+  std::uint64_t rays = 0;
+  float weight = -1.0f;
+  ASSERT_TRUE(direct_light(world, h, up, up, rays, weight));
+  EXPECT_NEAR(weight, expect, 1e-5 * expect);
+}
+
 // Split factors per diffuse hit: the listed ones, then 1 past the end.
 TEST(Splitting, FactorsPerDiffuseHitEndInOnes) {
   RenderSettings settings;

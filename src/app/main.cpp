@@ -71,7 +71,9 @@ int viewer(const CommandLine& cl, const Scene& scene) {
 std::string missing_scene(const std::string& name) {
   std::error_code ec;
   const auto path = resolve_scene(name);
-  if (std::filesystem::exists(path, ec)) return {};
+  // There, or not to be looked at (a symbolic link loop): load_scene says why.
+  if (std::filesystem::exists(path, ec) || (ec && ec != std::errc::no_such_file_or_directory))
+    return {};
   const auto names = list_scenes();
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;

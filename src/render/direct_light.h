@@ -32,6 +32,14 @@ inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng
   const Ray shadow = spawn_shadow_ray(h, light.position, wi, d2 * inv_d);
   if (world.occluded_to_light(shadow, d2)) return false;
   weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
+  // I cos / d^2 can leave float's range before the 1/(4 pi^2) brings the term
+  // back (a light 1e-5 from the surface at the scene reader's 1e30): then in
+  // double, so that the term is infinite only where float cannot hold it.
+  if (!(weight < kInf)) {
+    const glm::dvec3 to(to_light);
+    const double dd2 = glm::dot(to, to);
+    weight = float(double(light.intensity) * cos_s / (dd2 * (4.0 * double(kPi) * double(kPi))));
+  }
   return true;
 }
 

@@ -1,7 +1,9 @@
 // OBJ loading: a validating line scan that names the file and line of bad
 // input, then tinyobjloader for the parse and polygon triangulation.
 #include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -157,10 +159,12 @@ double written_value(float x) {
 
 TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, 0, "cannot open file");
+  if (!in) fail(path, 0, std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream buf;
   buf << in.rdbuf();
-  const std::string text = buf.str();
+  std::string text = buf.str();
+  // A UTF-8 byte order mark (some Windows exporters write one) is no line.
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
   if (text.empty()) fail(path, 0, "file is empty");
   const Scan s = scan(path, text);
 

@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <unordered_set>
@@ -285,6 +287,9 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
 Scene load_scene(const fs::path& path, const std::string& mesh_override) {
   std::error_code ec;
   if (!fs::exists(path, ec)) {
+    // A symbolic link loop or a folder that cannot be searched: say which.
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      throw SceneError(path.string() + ": cannot open scene file: " + ec.message());
     std::string hint;
     if (path.parent_path() == scenes_dir()) {
       for (const auto& n : list_scenes()) hint += (hint.empty() ? "" : ", ") + n;
@@ -299,7 +304,7 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
   if (fs::is_character_file(st) || fs::is_block_file(st) || fs::is_socket(st))
     throw SceneError(path.string() + ": is a device, not a scene file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path.string() + ": cannot open scene file");
+  if (!in) throw SceneError(path.string() + ": cannot open scene file: " + std::strerror(errno));
   constexpr std::size_t kMaxSceneBytes = std::size_t(256) << 20;
   std::string text;
   std::vector<char> buf(1 << 16);

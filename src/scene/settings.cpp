@@ -1,5 +1,6 @@
 #include "scene/settings.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iomanip>
@@ -67,20 +68,22 @@ std::string integer_from_text(const SettingField& f, std::string_view text, T& o
 }
 
 std::string split_from_text(const SettingField& f, std::string_view text, std::vector<int>& out) {
+  // Each factor an integer in full, no sign or space: "4," and " 4" are
+  // typing slips, not a tree.
+  const std::string expected = std::string("expected integers separated by commas, e.g. ") + f.example;
   std::vector<int> factors;
-  std::istringstream in{std::string(text)};
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    int k = 0;
-    try {
-      k = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
-      return std::string("expected integers separated by commas, e.g. ") + f.example;
-    factors.push_back(k);
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string_view item = text.substr(start, comma - start);
+    long long k = 0;
+    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), k);
+    if (item.empty() || end != item.data() + item.size()) return expected;
+    if (ec == std::errc::result_out_of_range || k < 1 || k > kMaxSplitFactor)
+      return "factors must be in [1, " + std::to_string(kMaxSplitFactor) + "], got " +
+             std::string(item.substr(0, 24));
+    factors.push_back(int(k));
+    if (comma == text.size()) break;
+    start = comma + 1;
   }
   if (std::string why = check_split(factors); !why.empty()) return why;
   out = factors;

@@ -607,6 +607,34 @@ PY
     [ "$n" -le 1 ] || fail "the checkpoint failure was told $n times"
     no_temp_files full
     ;;
+  input-slips)
+    # A split with a trailing comma or a space was taken ("4," as 4); one too
+    # large said "expected integers"; an OBJ that starts with a UTF-8 byte
+    # order mark was refused; a scene behind a symbolic link loop was "not
+    # found". Each now says what it is.
+    scene 16 16
+    for bad in '4,' ' 4' '4,,4' '+4' '4, 4'; do
+      run --headless --scene scene.json --quiet --split "$bad" --stats s.json
+      expect_rc 2
+      expect_err "^whisker: --split .*expected integers separated by commas"
+    done
+    run --headless --scene scene.json --quiet --split 99999999999 --stats s.json
+    expect_rc 2
+    expect_err "^whisker: --split .*factors must be in \[1, [0-9]+\], got 99999999999"
+    printf 'v -20 -20 0\nv 20 -20 0\nv 0 20 0\nf 1 2 3\n' >plain.obj
+    { printf '\xef\xbb\xbf'; cat plain.obj; } >bom.obj
+    for obj in plain bom; do
+      echo "{\"camera\": {\"width\": 16, \"height\": 16}, \"meshes\": [{\"path\": \"$obj.obj\"}]}" >m.json
+      run --headless --scene m.json --quiet --frames 1 --out-float "$obj.pfm"
+      expect_rc 0
+    done
+    cmp -s plain.pfm bom.pfm || fail "the OBJ with a byte order mark rendered otherwise"
+    ln -s loop-b.json loop-a.json
+    ln -s loop-a.json loop-b.json
+    run --headless --scene loop-a.json --quiet --stats s.json
+    expect_rc 2
+    expect_err "^whisker: loop-a.json: cannot open scene file: too many levels of symbolic links"
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;
