@@ -134,7 +134,7 @@ TEST_F(MeshIo, MissingFile) {
     load_obj(p, 1.0f, vec3(0.0f));
     FAIL() << "loaded a missing file";
   } catch (const MeshError& e) {
-    EXPECT_EQ(std::string(e.what()), p + ": cannot open file");
+    EXPECT_EQ(std::string(e.what()), p + ": cannot open file: No such file or directory");
   }
 }
 

@@ -247,10 +247,16 @@ int usage_error(const std::string& message) {
   return kUsageError;
 }
 
+namespace {
+
+// What the parser's failure does: --help and --version print and return 0;
+// anything else is one line, "whisker: ...", and kUsageError.
 int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
   if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
   return usage_error(one_line_error(e, app));
 }
+
+}  // namespace
 
 std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
@@ -287,6 +293,27 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
       return usage_error(std::string(fields[i].option) + " " + cut_for_message(texts[i]) + ": " + why);
     out.given.push_back(&fields[i]);
   }
+  return std::nullopt;
+}
+
+std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandLine& o) {
+  CLI::App app{"Sums accumulation files (sample-range parts of one render) into one, exactly",
+               "whisker merge"};
+  app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings");
+  app.add_option("--out", o.outs,
+                 "Output: .exr (accumulation file, mergeable again), .pfm (mean radiance), "
+                 ".png (the report's mapping); repeatable")
+      ->allow_extra_args(false);
+  app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
+  app.add_flag("--partial", o.partial,
+               "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return parse_failure(e, app);
+  }
+  if (app.count("--stats") && o.stats_json.empty())
+    return usage_error("merge --stats: needs a value, got \"\" (see --help)");
   return std::nullopt;
 }
 

@@ -9,11 +9,6 @@
 
 #include "scene/scene.h"
 
-namespace CLI {
-class App;
-class ParseError;
-}  // namespace CLI
-
 namespace whisker {
 
 inline constexpr int kUsageError = 2;  // bad option, bad scene, unwritable output
@@ -75,8 +70,16 @@ std::string closest(const std::string& word, const std::vector<std::string>& can
 // Prints "whisker: MESSAGE" to stderr; returns kUsageError.
 int usage_error(const std::string& message);
 
-// What a command-line parser's failure does: --help and --version print
-// and return 0; anything else is one line, "whisker: ...", and kUsageError.
-int parse_failure(const CLI::ParseError& e, const CLI::App& app);
+// `whisker merge PART.exr... --out FILE... [--stats F] [--partial]` (docs/SHARDS.md).
+struct MergeCommandLine {
+  std::vector<std::string> parts;
+  std::vector<std::string> outs;
+  std::string stats_json;
+  bool partial = false;
+};
+
+// Parses merge's argv (argv[0] is "merge") into `out`, as parse_command_line.
+// Here so that the parser library (heavy to compile) is in one file only.
+std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandLine& out);
 
 }  // namespace whisker

@@ -5,8 +5,6 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "app/cli.h"
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
@@ -18,14 +16,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct MergeOptions {
-  std::vector<std::string> parts;
-  std::vector<std::string> outs;
-  std::string stats_json;
-  bool partial = false;
-};
-
-std::string check_outs(const MergeOptions& o) {
+std::string check_outs(const MergeCommandLine& o) {
   if (o.outs.empty() && o.stats_json.empty())
     return "merge needs at least one --out (.exr, .pfm or .png) or --stats";
   // No output may replace a part or another output (--stats too).
@@ -55,7 +46,7 @@ std::string check_outs(const MergeOptions& o) {
   return {};
 }
 
-void write(const MergeOptions& o, const Accumulation& acc) {
+void write(const MergeCommandLine& o, const Accumulation& acc) {
   const Snapshot snap = snapshot_of(acc);
   const Image img = mean_image(snap);
   for (const std::string& out : o.outs) {
@@ -70,24 +61,8 @@ void write(const MergeOptions& o, const Accumulation& acc) {
 }  // namespace
 
 int run_merge(int argc, char** argv) {
-  CLI::App app{"Sums accumulation files (sample-range parts of one render) into one, exactly",
-               "whisker merge"};
-  MergeOptions o;
-  app.add_option("parts", o.parts, "Accumulation files (--out-sum) of one scene and settings");
-  app.add_option("--out", o.outs,
-                 "Output: .exr (accumulation file, mergeable again), .pfm (mean radiance), "
-                 ".png (the report's mapping); repeatable")
-      ->allow_extra_args(false);
-  app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
-  app.add_flag("--partial", o.partial,
-               "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return parse_failure(e, app);
-  }
-  if (app.count("--stats") && o.stats_json.empty())
-    return usage_error("merge --stats: needs a value, got \"\" (see --help)");
+  MergeCommandLine o;
+  if (const auto rc = parse_merge_command_line(argc, argv, o)) return *rc;
   if (o.parts.empty())
     return usage_error("merge: no parts given; usage: whisker merge PART.exr... --out FILE");
   if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);

@@ -28,18 +28,6 @@ inline float safe_inv(float d) {
   return 1.0f / d;
 }
 
-// False for a ray with a NaN in its origin, direction or bounds. Such a ray
-// meets nothing, and must be stopped before the slab test: there a NaN
-// distance drops out of max/min (they return their other operand), so the
-// ray would enter every child, the unused slots too, whose reference is no
-// node (kEmptyRef): a read far outside the tree.
-inline bool traceable(const Ray& r) {
-  const float v[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
-  bool ok = true;
-  for (const float x : v) ok &= !std::isnan(x);
-  return ok;
-}
-
 constexpr int kStackSize = 512;  // 7 entries per level, depth <= 72 (bvh_build.cpp)
 
 struct StackEntry {

@@ -31,6 +31,17 @@ struct Ray {
   vec3 o_lo{0.0f};
 };
 
+// False for a ray with a NaN in its origin, direction or bounds: it meets
+// nothing, and a slab test must not see it (there a NaN distance drops out
+// of max/min, which return their other operand, so the ray enters every
+// child, unused slots too: a read far outside a tree).
+inline bool traceable(const Ray& r) {
+  const float v[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
+  bool ok = true;
+  for (const float x : v) ok &= x == x;  // false for NaN only
+  return ok;
+}
+
 // Which kind of primitive a hit belongs to.
 enum class PrimKind : std::uint8_t { None, Sphere, Triangle };
 

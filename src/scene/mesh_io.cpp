@@ -155,17 +155,23 @@ double written_value(float x) {
   return std::strtod(buf, nullptr);
 }
 
-}  // namespace
-
-TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
+// The file's bytes, without a UTF-8 byte order mark (some Windows exporters
+// write one); never empty.
+std::string read_obj_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, std::string("cannot open file: ") + std::strerror(errno));
   std::ostringstream buf;
   buf << in.rdbuf();
   std::string text = buf.str();
-  // A UTF-8 byte order mark (some Windows exporters write one) is no line.
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
   if (text.empty()) fail(path, 0, "file is empty");
+  return text;
+}
+
+}  // namespace
+
+TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
+  const std::string text = read_obj_text(path);
   const Scan s = scan(path, text);
 
   TriangleMesh mesh;
