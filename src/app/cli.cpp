@@ -221,6 +221,8 @@ std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
   }
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find(" missing") != std::string::npos)
     return m.substr(0, m.find(':')) + ": needs a value (see --help)";
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find("At Most 1") != std::string::npos)
+    return m.substr(0, m.find(':')) + ": given more than once; give it once";
   std::replace(m.begin(), m.end(), '\n', ' ');
   return m;
 }

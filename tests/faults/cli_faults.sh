@@ -611,13 +611,17 @@ PY
     # A split with a trailing comma or a space was taken ("4," as 4); one too
     # large said "expected integers"; an OBJ that starts with a UTF-8 byte
     # order mark was refused; a scene behind a symbolic link loop was "not
-    # found". Each now says what it is.
+    # found"; an option given twice read "At Most 1 required but received 2".
+    # Each now says what it is.
     scene 16 16
     for bad in '4,' ' 4' '4,,4' '+4' '4, 4'; do
       run --headless --scene scene.json --quiet --split "$bad" --stats s.json
       expect_rc 2
       expect_err "^whisker: --split .*expected integers separated by commas"
     done
+    run --headless --scene scene.json --quiet --frames 1 --frames 2 --stats s.json
+    expect_rc 2
+    expect_err "^whisker: --frames: given more than once; give it once$"
     run --headless --scene scene.json --quiet --split 99999999999 --stats s.json
     expect_rc 2
     expect_err "^whisker: --split .*factors must be in \[1, [0-9]+\], got 99999999999"
