@@ -99,11 +99,15 @@ CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
   const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
   const CLI::Validator v(
       [=](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+        // from_chars, not strtod: no hex, no leading space or '+', as int_in.
+        double v = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || end != text.data() + text.size() ||
+            (ec != std::errc() && ec != std::errc::result_out_of_range) || std::isnan(v) ||
+            std::isinf(v))
           return text + ": expected a number";
-        if (v < lo || v > hi) return text + ": must be in " + range;
+        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+          return text + ": must be in " + range;
         return {};
       },
       "");

@@ -611,7 +611,7 @@ PY
     # A split with a trailing comma or a space was taken ("4," as 4); one too
     # large said "expected integers"; an OBJ that starts with a UTF-8 byte
     # order mark was refused; a scene behind a symbolic link loop was "not
-    # found"; an option given twice read "At Most 1 required but received 2".
+    # found"; --intensity took hex and spaces (0x10, " 5"); an option given twice read "At Most 1 required but received 2".
     # Each now says what it is.
     scene 16 16
     for bad in '4,' ' 4' '4,,4' '+4' '4, 4'; do
@@ -619,6 +619,14 @@ PY
       expect_rc 2
       expect_err "^whisker: --split .*expected integers separated by commas"
     done
+    for bad in '0x10' ' 5' '+5' '5 '; do
+      run --headless --scene scene.json --quiet --intensity "$bad" --stats s.json
+      expect_rc 2
+      expect_err "^whisker: --intensity .*expected a number"
+    done
+    run --headless --scene scene.json --quiet --intensity 1e400 --stats s.json
+    expect_rc 2
+    expect_err "^whisker: --intensity 1e400: must be in \[0, 1e\+?30\]"
     run --headless --scene scene.json --quiet --frames 1 --frames 2 --stats s.json
     expect_rc 2
     expect_err "^whisker: --frames: given more than once; give it once$"
