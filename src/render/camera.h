@@ -1,7 +1,6 @@
 // Camera rays, as in SCENES.md "Conventions".
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -23,23 +22,8 @@ struct CameraFrame {
         half_w(0.5f * float(c.width)),
         half_h(0.5f * float(c.height)),
         focal(float(c.width) / (2.0f * std::tan(glm::radians(c.fov_deg) * 0.5f))) {
-    right = glm::normalize(pow2_scaled(glm::cross(forward, pow2_scaled(c.up))));
+    right = camera_right(c, forward);
     up = glm::cross(right, forward);
-  }
-
-  // v times the power of two (exact) that puts its largest component in
-  // [1, 2). glm::normalize squares its argument in float, and the scene file
-  // takes an `up` of any length in [1e-30, 1e30] and any look_at: the side
-  // vector of a view nearly along `up` may be 1e-32 long. Squared, such
-  // vectors underflow to 0 (a NaN basis: a black image) or overflow (a zero
-  // basis: one colour everywhere). A power of two changes no bit of the
-  // normalised result where there was no underflow or overflow.
-  static vec3 pow2_scaled(vec3 v) {
-    const float m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-    if (m > 0.0f && std::isfinite(m)) v = vec3(std::ldexp(v.x, -std::ilogb(m)),
-                                               std::ldexp(v.y, -std::ilogb(m)),
-                                               std::ldexp(v.z, -std::ilogb(m)));
-    return v;
   }
 
   // Pixel (row i from the top, column j) with offset (dx, dy) in pixels:

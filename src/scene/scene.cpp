@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "geometry/unit.h"
+
 namespace whisker {
 
 namespace {
@@ -20,6 +22,10 @@ vec3 view_direction(const Camera& camera) {
   const glm::dvec3 d = camera.look_at - camera.position;
   const double m = std::max({std::fabs(d.x), std::fabs(d.y), std::fabs(d.z)});
   return vec3(glm::normalize(d / m));
+}
+
+vec3 camera_right(const Camera& camera, const vec3& forward) {
+  return unit_or_zero(glm::cross(forward, pow2_scaled(camera.up)));
 }
 
 }  // namespace whisker

@@ -97,4 +97,9 @@ constexpr double kMaxCoordinate = 1e7;
 // finite direction (look_at != position).
 vec3 view_direction(const Camera& camera);
 
+// The camera's unit right vector, forward x up, for an up of any length
+// (geometry/unit.h); zero when up is parallel to the view direction. The
+// camera frame (render/camera.h) and the scene reader's check both use it.
+vec3 camera_right(const Camera& camera, const vec3& forward);
+
 }  // namespace whisker

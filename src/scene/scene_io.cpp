@@ -58,20 +58,10 @@ void read_camera(const Fields& c, Camera& cam) {
   if ((long long)cam.width * cam.height > kMaxPixels)
     c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
                                  " pixels is more than 4096 x 4096");
-  // As the camera frame will compute them (camera.h).
+  // As the camera frame will compute them (camera.h, camera_right).
   if (cam.look_at == cam.position) c.fail(c.field("look_at"), "must differ from camera.position");
-  const vec3 forward = view_direction(cam);
-  const vec3 side = glm::cross(forward, cam.up);
-  if (side == vec3(0.0f)) c.fail(c.field("up"), "must not be parallel to the view direction");
-  // The frame in float, as the camera builds it: an up of length 1e-30 or
-  // 1e30 passed the checks above and gave NaN rays, a black image.
-  const vec3 right = glm::normalize(side), up = glm::cross(right, forward);
-  const auto finite = [](const vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-  };
-  if (!finite(right) || !finite(up) || glm::dot(right, right) < 0.5f || glm::dot(up, up) < 0.5f)
-    c.fail(c.field("up"), "too short or too long to build the camera frame in float; give a "
-                          "length near 1");
+  if (camera_right(cam, view_direction(cam)) == vec3(0.0f))
+    c.fail(c.field("up"), "must not be parallel to the view direction");
 }
 
 std::string line_column(const std::string& text, std::size_t byte) {

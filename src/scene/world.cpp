@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/mesh.h"
+#include "geometry/unit.h"
 
 namespace whisker {
 
@@ -19,23 +20,6 @@ BvhMethod bvh_method(AccelKind k) {
   }
   return BvhMethod::Sah;
 }
-
-namespace {
-
-// An OBJ normal of any length made unit: first scaled by the power of two
-// (exact) that puts its largest component in [1, 2), as glm::normalize
-// squares it in float (a normal 1e30 or 1e-23 long overflowed or underflowed
-// to a NaN shading normal: black pixels, NaN bounce rays). A zero or
-// non-finite normal has no direction: it stays zero, so the corner adds
-// nothing to the interpolated normal (record_triangle).
-vec3 unit_or_zero(vec3 v) {
-  const float m = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
-  if (!(m > 0.0f) || !std::isfinite(m)) return vec3(0.0f);
-  const int e = -std::ilogb(m);
-  return glm::normalize(vec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)));
-}
-
-}  // namespace
 
 World::World(const Scene& scene, const World* reuse) {
   origin_ = glm::dvec3(scene.camera.position);
