@@ -277,6 +277,7 @@ struct OffCentreCase {
   std::vector<int> split;
   SamplerKind sampler;
   vec3 split_weights{1.0f};
+  int reuse = 1;  // path reuse's block side (render/path_reuse.h)
   int paths() const {
     int n = 1;
     for (int k : split) n *= k;
@@ -289,11 +290,15 @@ INSTANTIATE_TEST_SUITE_P(Splits, OffCentre,
                          ::testing::Values(OffCentreCase{{1}, SamplerKind::Sobol},
                                            OffCentreCase{{4, 4}, SamplerKind::Sobol},
                                            OffCentreCase{{3, 2}, SamplerKind::Independent},
-                                           OffCentreCase{{4, 4}, SamplerKind::Sobol, vec3(0.5f)}),
+                                           OffCentreCase{{4, 4}, SamplerKind::Sobol, vec3(0.5f)},
+                                           OffCentreCase{{4, 4}, SamplerKind::Sobol, vec3(1.0f), 2},
+                                           OffCentreCase{{2, 2}, SamplerKind::Independent, vec3(1.0f), 4},
+                                           OffCentreCase{{1}, SamplerKind::Sobol, vec3(1.0f), 3}),
                          [](const auto& info) {
                            std::string name = to_string(info.param.sampler);
                            for (int k : info.param.split) name += "Split" + std::to_string(k);
                            if (info.param.split_weights != vec3(1.0f)) name += "Weighted";
+                           if (info.param.reuse > 1) name += "Reuse" + std::to_string(info.param.reuse);
                            return name;
                          });
 
@@ -306,6 +311,7 @@ TEST_P(OffCentre, LightInClosedSphere) {
     scene.settings.split = GetParam().split;
     scene.settings.sampler = GetParam().sampler;
     scene.settings.split_weights = GetParam().split_weights;
+    scene.settings.reuse = GetParam().reuse;
     const Snapshot s = render(scene);
     const int B = depth + 1;
     const CameraFrame cam(scene.camera);

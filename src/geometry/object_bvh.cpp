@@ -101,14 +101,15 @@ bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
   return found;
 }
 
-bool ObjectBvh::occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh) {
-  return (leaf.spheres.size() && leaf.spheres.occluded(ray)) ||
+bool ObjectBvh::occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh,
+                              std::uint32_t end_sphere) {
+  return (leaf.spheres.size() && leaf.spheres.occluded(ray, end_sphere)) ||
          (leaf.mesh && mesh && mesh->occluded(ray));
 }
 
-bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh) const {
+bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphere) const {
   if (nodes_.empty()) return false;
-  if (nodes_.size() == 1) return occluded_leaf(leaves_[0], ray, mesh);
+  if (nodes_.size() == 1) return occluded_leaf(leaves_[0], ray, mesh, end_sphere);
   const vec3 inv = safe_inverse(ray.d);
   std::uint32_t stack[128];
   int top = 0;
@@ -117,7 +118,7 @@ bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh) const {
     const Node& n = nodes_[stack[--top]];
     if (box_entry(n.box, ray, inv, ray.tmax) == kInf) continue;
     if (n.leaf != kInner) {
-      if (occluded_leaf(leaves_[n.leaf], ray, mesh)) return true;
+      if (occluded_leaf(leaves_[n.leaf], ray, mesh, end_sphere)) return true;
       continue;
     }
     stack[top++] = n.left;

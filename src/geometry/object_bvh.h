@@ -25,7 +25,8 @@ class ObjectBvh {
   // Sphere and prim = their index in `spheres`; the mesh's hits come from
   // `mesh`. Returns whether hit was updated.
   bool intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const;
-  bool occluded(const Ray& ray, const Bvh* mesh) const;
+  // Any hit in (ray.tmin, ray.tmax); `end_sphere` as in SphereSet::occluded.
+  bool occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphere = kNoSkip) const;
 
   std::size_t node_count() const { return nodes_.size(); }
   std::size_t leaf_count() const { return leaves_.size(); }
@@ -42,7 +43,8 @@ class ObjectBvh {
     bool mesh = false;
   };
   static bool intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const Bvh* mesh);
-  static bool occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh);
+  static bool occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh,
+                            std::uint32_t end_sphere);
 
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;

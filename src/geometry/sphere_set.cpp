@@ -204,16 +204,21 @@ bool SphereSet::intersect(const Ray& r, float tmax, float& t_out, std::uint32_t&
 }
 
 template <bool kExact>
-int SphereSet::occluded_pass(const Ray& r) const {
+int SphereSet::occluded_pass(const Ray& r, float end) const {
   const __m256 ox = _mm256_set1_ps(r.o.x), oy = _mm256_set1_ps(r.o.y), oz = _mm256_set1_ps(r.o.z);
   const __m256 dx = _mm256_set1_ps(r.d.x), dy = _mm256_set1_ps(r.d.y), dz = _mm256_set1_ps(r.d.z);
   const __m256 tmin = _mm256_set1_ps(r.tmin), tmax = _mm256_set1_ps(r.tmax);
   const __m256 skip = _mm256_set1_ps(r.skip == kNoSkip ? -2.0f : float(r.skip));
   const __m256 far_only = _mm256_castsi256_ps(_mm256_set1_epi32(r.far_only ? -1 : 0));
+  const __m256 end_id = _mm256_set1_ps(end);
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
     __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
                      tmax, skip, far_only, near);
+    // The sphere the segment ends on is not an occluder (see occluded()).
+    const __m256 at_end = _mm256_cmp_ps(_mm256_loadu_ps(&idf_[k]), end_id, _CMP_EQ_OQ);
+    t = _mm256_blendv_ps(t, _mm256_set1_ps(kInf), at_end);
+    near &= ~unsigned(_mm256_movemask_ps(at_end));
     if (near) {
       if constexpr (!kExact) return kRetry;
       alignas(32) float ts[8];
@@ -226,13 +231,15 @@ int SphereSet::occluded_pass(const Ray& r) const {
   return kMiss;
 }
 
-[[gnu::noinline]] bool SphereSet::occluded_exact(const Ray& r) const {
-  return occluded_pass<true>(r) == kFound;
+[[gnu::noinline]] bool SphereSet::occluded_exact(const Ray& r, float end) const {
+  return occluded_pass<true>(r, end) == kFound;
 }
 
-bool SphereSet::occluded(const Ray& r) const {
-  const int res = occluded_pass<false>(r);
-  if (res == kRetry) return occluded_exact(r);
+bool SphereSet::occluded(const Ray& r, std::uint32_t end_sphere) const {
+  // An id as a float (exact below 2^24, see idf_); -2 matches no lane.
+  const float end = end_sphere == kNoSkip ? -2.0f : float(end_sphere);
+  const int res = occluded_pass<false>(r, end);
+  if (res == kRetry) return occluded_exact(r, end);
   return res == kFound;
 }
 

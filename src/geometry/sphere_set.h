@@ -21,7 +21,12 @@ class SphereSet {
   // Closest hit with t in (ray.tmin, tmax): writes t and the sphere index,
   // returns false if none. Same arithmetic as intersect_sphere().
   bool intersect(const Ray& ray, float tmax, float& t, std::uint32_t& index) const;
-  bool occluded(const Ray& ray) const;
+  // Whether a sphere blocks the ray in (tmin, tmax). `end_sphere` (an id, or
+  // kNoSkip) is a sphere the segment ends on from outside, whose own side
+  // the caller has checked (a point outside a sphere sees a point on it iff
+  // it lies above that point's tangent plane): it is not tested, since near
+  // the end float cannot tell the surface from a root a little before it.
+  bool occluded(const Ray& ray, std::uint32_t end_sphere = kNoSkip) const;
   std::size_t size() const { return count_; }
 
  private:
@@ -30,8 +35,8 @@ class SphereSet {
   int intersect_pass(const Ray& r, float tmax, float& t, std::uint32_t& index) const;
   bool intersect_exact(const Ray& r, float tmax, float& t, std::uint32_t& index) const;
   template <bool kExact>
-  int occluded_pass(const Ray& r) const;
-  bool occluded_exact(const Ray& r) const;
+  int occluded_pass(const Ray& r, float end) const;
+  bool occluded_exact(const Ray& r, float end) const;
   void redo_near(std::size_t k, unsigned near, const Ray& r, float tmax, float* t) const;
   int closest_of(std::size_t k, unsigned tie, const Ray& r, __m256 t) const;
   std::size_t count_ = 0;

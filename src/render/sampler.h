@@ -49,6 +49,7 @@ std::uint32_t sobol_dim1(std::uint32_t index);
 // report's method) or the scrambled Sobol points.
 class Sampler {
  public:
+  Sampler() = default;  // a placeholder, to be assigned a real one
   Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, std::uint64_t seed);
 
   float get1d() {
@@ -75,7 +76,7 @@ class Sampler {
  private:
   void sobol2d(float& u, float& v);
 
-  SamplerKind kind_;
+  SamplerKind kind_ = SamplerKind::Independent;
   Rng rng_;                           // Independent only
   std::uint32_t reversed_index_ = 0;  // Sobol only: the sample index, bits reversed
   std::uint32_t key_ = 0;             // Sobol only: per-pixel scrambling seed

@@ -47,6 +47,10 @@ struct RenderSettings {
   // channel holds most of it). Each path's count depends only on its own
   // past, so the estimate stays unbiased. All 1: plain `split`.
   vec3 split_weights{1.0f};
+  // Path reuse (render/path_reuse.h): the pixels of each reuse x reuse block
+  // share their indirect paths, each weighted for every pixel so that its
+  // estimate stays unbiased; 1 = each pixel its own paths (the report's).
+  int reuse = 1;
 
   bool operator==(const RenderSettings&) const = default;
 };

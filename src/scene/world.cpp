@@ -223,8 +223,8 @@ void World::record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) con
   (void)ray;
 }
 
-bool World::occluded(const Ray& ray) const {
-  return objects_.occluded(ray, mesh_ ? &mesh_->bvh : nullptr);
+bool World::occluded(const Ray& ray, std::uint32_t end_sphere) const {
+  return objects_.occluded(ray, mesh_ ? &mesh_->bvh : nullptr, end_sphere);
 }
 
 }  // namespace whisker

@@ -81,7 +81,10 @@ class World {
                                         : mesh_material_[mesh_->object[hit.prim]];
   }
   void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
-  bool occluded(const Ray& ray) const;
+  // Any hit in (ray.tmin, ray.tmax). A segment that ends on a sphere, seen
+  // from outside it (the caller's check), names it as `end_sphere`: it is not
+  // tested (SphereSet::occluded).
+  bool occluded(const Ray& ray, std::uint32_t end_sphere = kNoSkip) const;
   // The scene's point light, as it was when this World was built (its
   // position in render space).
   struct Light {
