@@ -111,7 +111,7 @@ float geometry(const FirstHit& x, const Bounce& y) {
 // n_j g_j / sum_m n_m g_m over the bounce count of j, i.e. g_j / sum.
 void share(const World& world, const FirstHit* x, int pixels, const Bounce& y,
            PathStats& stats, vec3* L) {
-  float g[kMaxPixels];
+  float g[kMaxPixels] = {};
   float sum = 0.0f;
   for (int m = 0; m < pixels; ++m) {
     g[m] = 0.0f;
@@ -138,27 +138,34 @@ void share(const World& world, const FirstHit* x, int pixels, const Bounce& y,
 
 void sample_block(const World& world, const Scene& scene, const CameraFrame& cam, int i0,
                   int i1, int j0, int j1, std::uint64_t sample, vec3* out, PathStats& stats) {
-  const FlushDenormals ftz;
   const RenderSettings& s = scene.settings;
   const int cols = j1 - j0, pixels = (i1 - i0) * cols;
   FirstHit x[kMaxPixels];
-  Sampler samplers[kMaxPixels];
-  vec3 carried(0.0f);
-  for (int p = 0; p < pixels; ++p) {
-    const int i = i0 + p / cols, j = j0 + p % cols;
-    const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(scene.camera.width) + std::uint32_t(j);
-    samplers[p] = Sampler(s.sampler, pixel, sample, s.seed);
-    out[p] = vec3(0.0f);
-    first_hit(world, scene, cam, i, j, samplers[p], stats, x[p], out[p]);
-    if (!reuses_paths(s)) x[p].bounces = 0;  // nothing leaves the first hit
-    for (int c = 0; c < 3; ++c)
-      if (x[p].bounces > 0 && x[p].beta[c] != 0.0f) carried[c] = 1.0f;
-  }
   thread_local std::vector<Bounce> bounces;
   bounces.clear();
-  for (int p = 0; p < pixels; ++p)
-    if (x[p].bounces > 0)
-      send_bounces(world, s, x[p], p, samplers[p], carried, stats, bounces, out[p]);
+  {
+    // The paths, with denormals flushed as sample_pixel traces them.
+    const FlushDenormals ftz;
+    Sampler samplers[kMaxPixels];
+    vec3 carried(0.0f);
+    for (int p = 0; p < pixels; ++p) {
+      const int i = i0 + p / cols, j = j0 + p % cols;
+      const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(scene.camera.width) + std::uint32_t(j);
+      samplers[p] = Sampler(s.sampler, pixel, sample, s.seed);
+      out[p] = vec3(0.0f);
+      first_hit(world, scene, cam, i, j, samplers[p], stats, x[p], out[p]);
+      if (!reuses_paths(s)) x[p].bounces = 0;  // nothing leaves the first hit
+      for (int c = 0; c < 3; ++c)
+        if (x[p].bounces > 0 && x[p].beta[c] != 0.0f) carried[c] = 1.0f;
+    }
+    for (int p = 0; p < pixels; ++p)
+      if (x[p].bounces > 0)
+        send_bounces(world, s, x[p], p, samplers[p], carried, stats, bounces, out[p]);
+  }
+  // The sharing keeps gradual underflow: a bounce's light times a small
+  // weight can fall below float's normal range where the pixel's own light
+  // does not (a light of intensity 1e-30), and flushed to zero it would
+  // bias the pixel.
   for (const Bounce& y : bounces) share(world, x, pixels, y, stats, out);
 }
 
