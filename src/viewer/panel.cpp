@@ -139,17 +139,19 @@ static void settings_widgets(RenderSettings& r) {
 
 // Splitting: paths per sample from its first and second diffuse hits.
 static void split_widgets(RenderSettings& r) {
-  static const std::vector<int> kChoices[] = {{1}, {4}, {4, 4}, {8, 4}};
-  static const char* const kNames[] = {"1 (the report's)", "4", "4 x 4 (default)", "8 x 4"};
+  static const std::vector<int> kChoices[] = {{1}, {4}, {4, 2}, {4, 4}, {8, 4}};
+  static const char* const kNames[] = {"1 (the report's)", "4", "4 x 2 (the cat)", "4 x 4 (default)",
+                                       "8 x 4"};
+  constexpr int kCount = 5;
   int current = -1;
-  for (int k = 0; k < 4; ++k)
+  for (int k = 0; k < kCount; ++k)
     if (r.split == kChoices[k]) current = k;
   const std::string preview =
       current >= 0 ? kNames[current] : split_to_string(r.split) + " (command line)";
   // Splitting happens at diffuse bounces, which only indirect light follows.
   ImGui::BeginDisabled(!r.indirect);
   if (ImGui::BeginCombo("paths/sample", preview.c_str())) {
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < kCount; ++k)
       if (ImGui::Selectable(kNames[k], k == current)) r.split = kChoices[k];
     ImGui::EndCombo();
   }
