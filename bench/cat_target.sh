@@ -24,7 +24,7 @@
 #    against the report program's.
 #
 # Knobs: WHISKER_BUILD, REPORT_SPP (16), REPORT_SMALL (2), REPORT_FULL (0),
-# REPORT_PROGRAM_DIR, BEST_SPP ("8 16 32 64"), BEST_FLAGS (""), SEEDS ("101 202":
+# REPORT_PROGRAM_DIR, BEST_SPP ("6 7 8 10 16"), BEST_FLAGS (""), SEEDS ("101 202":
 # exactly two), THREADS (2), CAT_OUT (output dir, default $BUILD/cat-target).
 set -euo pipefail
 
@@ -34,7 +34,7 @@ BUILD=${WHISKER_BUILD:-$ROOT/build}
 REPORT_SPP=${REPORT_SPP:-16}
 REPORT_SMALL=${REPORT_SMALL:-2}
 REPORT_FULL=${REPORT_FULL:-0}
-BEST_SPP=${BEST_SPP:-"8 16 32 64"}
+BEST_SPP=${BEST_SPP:-"6 7 8 10 16"}
 read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"
 read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
 THREADS=${THREADS:-2}
