@@ -34,7 +34,7 @@ vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& s
       // by zero. It changes the time, not the estimate, and is decided
       // before the hit record is made.
       beta *= m.albedo;
-      if (settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f) return L;
+      if (ends_dark(settings, beta)) return L;
     }
     SurfaceHit h;
     world.record(ray, hit, h);
@@ -52,12 +52,18 @@ vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& s
   return L;
 }
 
-bool diffuse_vertex(const World& world, const RenderSettings& settings, const Ray& in,
-                    const SurfaceHit& h, const vec3& beta, int depth, int& diffuse_hits,
-                    Sampler& sampler, PathStats& stats, vec3& L, Ray& next) {
+FacingNormals add_direct_light(const World& world, const Ray& in, const SurfaceHit& h,
+                               const vec3& beta, PathStats& stats, vec3& L) {
   const FacingNormals n(h, in.d);
   float weight;
   if (direct_light(world, h, n.ng, n.ns, stats.rays, weight)) L += beta * weight;
+  return n;
+}
+
+bool diffuse_vertex(const World& world, const RenderSettings& settings, const Ray& in,
+                    const SurfaceHit& h, const vec3& beta, int depth, int& diffuse_hits,
+                    Sampler& sampler, PathStats& stats, vec3& L, Ray& next) {
+  const FacingNormals n = add_direct_light(world, in, h, beta, stats, L);
   if (!settings.indirect || depth == settings.max_depth) return false;
   const int split = split_factor(settings, diffuse_hits++, beta);
   const Frame frame(n.ns);

@@ -11,6 +11,7 @@
 
 #include "render/camera.h"
 #include "render/sampler.h"
+#include "render/scattering.h"
 #include "scene/scene.h"
 #include "scene/world.h"
 
@@ -47,6 +48,18 @@ Ray camera_ray(const World& world, const Scene& scene, const CameraFrame& cam, i
 vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& ray, vec3 beta,
                 int depth, int diffuse_hits, Sampler& sampler, PathStats& stats,
                 const Hit* first_hit = nullptr);
+
+// Whether a path of throughput beta ends here (RenderSettings::zero_cutoff):
+// it can carry no more light, so its light and bounces would all be zero.
+inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
+  return settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f;
+}
+
+// Adds the point light's direct light at the recorded diffuse hit h of ray
+// `in` (throughput beta, the albedo in it) to L; returns h's normals turned
+// to the side `in` came from, the frame of its bounces.
+FacingNormals add_direct_light(const World& world, const Ray& in, const SurfaceHit& h,
+                               const vec3& beta, PathStats& stats, vec3& L);
 
 // At the recorded diffuse hit h of ray `in` (the albedo already in beta):
 // adds its direct light to L and, when the path goes on, either splits (the

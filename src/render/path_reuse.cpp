@@ -5,7 +5,6 @@
 
 #include <glm/geometric.hpp>
 
-#include "render/direct_light.h"
 #include "render/sampler.h"
 #include "render/sampling.h"
 #include "render/scattering.h"
@@ -34,8 +33,6 @@ struct Bounce {
   int owner = 0;  // the pixel that sent it
 };
 
-bool is_zero(const vec3& v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
-
 // The camera hit of pixel (i, j): its direct light into L and, when it is a
 // technique, `first`; otherwise (no diffuse hit, or nothing to carry) the
 // whole sample as sample_pixel traces it.
@@ -52,12 +49,9 @@ void first_hit(const World& world, const Scene& scene, const CameraFrame& cam, i
     return;
   }
   first.beta = m.albedo;
-  if (s.zero_cutoff && is_zero(first.beta)) return;
+  if (ends_dark(s, first.beta)) return;
   world.record(ray, hit, first.h);
-  const FacingNormals n(first.h, ray.d);
-  float weight;
-  if (direct_light(world, first.h, n.ng, n.ns, stats.rays, weight)) L += first.beta * weight;
-  first.ns = n.ns;
+  first.ns = add_direct_light(world, ray, first.h, first.beta, stats, L).ns;
   first.bounces = split_factor(s, 0, first.beta);
 }
 
@@ -80,7 +74,7 @@ void send_bounces(const World& world, const RenderSettings& s, const FirstHit& x
       continue;
     }
     const vec3 beta = carried * m.albedo;
-    if (s.zero_cutoff && is_zero(beta)) continue;
+    if (ends_dark(s, beta)) continue;
     SurfaceHit h;
     world.record(ray, hit, h);
     Bounce y;

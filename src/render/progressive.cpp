@@ -297,44 +297,40 @@ void ProgressiveRenderer::run_tiles() {
       job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
       continue;
     }
-    if (reuses_paths(scene.settings)) {
-      nans = run_blocks(i0, i1, j0, j1, stats);
-    } else {
-      for (int i = i0; i < i1; ++i) {
-        for (int j = j0; j < j1; ++j) {
-          const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
-          PixelSum sum;
-          for (int k = 0; k < job.pass_spp; ++k) {
-            Sampler sampler(scene.settings.sampler, pixel, job.sample_base + std::uint64_t(k), seed);
-            sum.add(sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats));
-          }
-          job.film.add(pixel, sum);
-          nans += sum.dropped;
-        }
-      }
-    }
+    nans = run_blocks(i0, i1, j0, j1, stats);
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
     job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
     progress_tiles_done_.fetch_add(1, std::memory_order_relaxed);
   }
 }
 
-// The tile's pixels [i0, i1) x [j0, j1) in blocks of settings.reuse on a
-// side, from the tile's corner (tiles never split a block, so an image is the
-// same whatever the thread count). Returns the samples dropped.
+// The tile's pixels [i0, i1) x [j0, j1), this pass's samples of each: with
+// path reuse in blocks of settings.reuse on a side, from the tile's corner
+// (tiles never split a block, so an image is the same whatever the thread
+// count), otherwise pixel by pixel. Returns the samples dropped.
 std::uint64_t ProgressiveRenderer::run_blocks(int i0, int i1, int j0, int j1, PathStats& stats) {
   Job& job = *job_;
-  const int side = std::min(job.scene.settings.reuse, kMaxReuseBlock);
+  const Scene& scene = job.scene;
+  const bool reuse = reuses_paths(scene.settings);
+  const int side = reuse ? std::min(scene.settings.reuse, kMaxReuseBlock) : 1;
   std::uint64_t nans = 0;
+  // Once per tile, not per block: a pixel by itself clears one sum, not 64.
+  PixelSum sums[kMaxReuseBlock * kMaxReuseBlock];
+  vec3 out[kMaxReuseBlock * kMaxReuseBlock];
   for (int bi = i0; bi < i1; bi += side) {
     for (int bj = j0; bj < j1; bj += side) {
       const int bi1 = std::min(i1, bi + side), bj1 = std::min(j1, bj + side);
       const int cols = bj1 - bj, pixels = (bi1 - bi) * cols;
-      PixelSum sums[kMaxReuseBlock * kMaxReuseBlock];
-      vec3 out[kMaxReuseBlock * kMaxReuseBlock];
+      std::fill_n(sums, pixels, PixelSum{});
       for (int k = 0; k < job.pass_spp; ++k) {
-        sample_block(job.world, job.scene, *job.cam, bi, bi1, bj, bj1,
-                     job.sample_base + std::uint64_t(k), out, stats);
+        const std::uint64_t sample = job.sample_base + std::uint64_t(k);
+        if (reuse) {
+          sample_block(job.world, scene, *job.cam, bi, bi1, bj, bj1, sample, out, stats);
+        } else {  // one pixel
+          const std::uint32_t pixel = std::uint32_t(bi) * std::uint32_t(job.width) + std::uint32_t(bj);
+          Sampler sampler(scene.settings.sampler, pixel, sample, scene.settings.seed);
+          out[0] = sample_pixel(job.world, scene, *job.cam, bi, bj, sampler, stats);
+        }
         for (int p = 0; p < pixels; ++p) sums[p].add(out[p]);
       }
       for (int p = 0; p < pixels; ++p) {
