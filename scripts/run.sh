@@ -15,7 +15,7 @@ status=0
 if [ "$status" -eq 3 ]; then
   # No display: render the default scene without a window instead. The cat's
   # own target (1024 samples per pixel) takes minutes on two cores; 16 give a
-  # clean first image (less noise than the report's 1024) in about 6 s there.
+  # clean first image (less noise than the report's 1024) in about 7 s there.
   # More: --target-spp N or --frames N.
   out="$PWD/whisker-cat.png"
   whisker_log "no display; rendering the cat scene headless (16 samples per pixel) to $out"
