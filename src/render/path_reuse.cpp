@@ -108,8 +108,7 @@ void share(const World& world, const FirstHit* x, int pixels, const Bounce& y,
   float g[kMaxPixels] = {};
   float sum = 0.0f;
   for (int m = 0; m < pixels; ++m) {
-    g[m] = 0.0f;
-    if (x[m].bounces == 0) continue;
+    if (x[m].bounces == 0) continue;  // not a technique: g stays 0
     g[m] = geometry(x[m], y);
     if (g[m] > 0.0f && m != y.owner) {
       ++stats.rays;
