@@ -331,7 +331,7 @@ std::uint64_t ProgressiveRenderer::run_blocks(int i0, int i1, int j0, int j1, Pa
           Sampler sampler(scene.settings.sampler, pixel, sample, scene.settings.seed);
           out[0] = sample_pixel(job.world, scene, *job.cam, bi, bj, sampler, stats);
         }
-        for (int p = 0; p < pixels; ++p) sums[p].add(out[p]);
+        for (int p = 0; p < pixels; ++p) sums[p].add(out[p], sample);
       }
       for (int p = 0; p < pixels; ++p) {
         const int i = bi + p / cols, j = bj + p % cols;
@@ -364,6 +364,7 @@ void ProgressiveRenderer::end_pass() {
   job.film.publish(s, preview);
   if (publish_exact_ && !preview) job.film.publish_exact(s);
   s.spp = preview ? 1 : job.spp_done;  // the preview shows as one sample
+  s.first_sample = job.first_sample;
   s.generation = job.generation;
   s.version += 1;
   s.passes = job.passes;
