@@ -437,23 +437,23 @@ TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
     const glm::dvec3 p(std::sin(a), std::cos(a), 0.0), to = glm::dvec3(0, 10, 0) - p;
     const double d2 = glm::dot(to, to), cos_s = glm::dot(p, to) / std::sqrt(d2);
     std::uint64_t rays = 0;
-    float weight = -1.0f;
-    ASSERT_TRUE(direct_light(world, on_ball(world, vec3(p)), vec3(p), vec3(p), rays, weight)) << deg;
+    const LightArrival arrival = direct_light(world, on_ball(world, vec3(p)), {vec3(p), vec3(p)}, rays);
+    ASSERT_TRUE(arrival.lit) << deg;
+    const float weight = arrival.weight;
     EXPECT_EQ(rays, 1u);
     // I/(4 pi d^2) * <N, w_i> / pi: the albedo is the caller's.
     const double expect = I * cos_s / (4.0 * kPi * kPi * d2);
     EXPECT_NEAR(weight, expect, 1e-5 * expect) << deg;
   }
   std::uint64_t rays = 0;
-  float weight = -1.0f;
   const vec3 down(0.0f, -1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(world, on_ball(world, down), down, down, rays, weight));  // facing away
+  EXPECT_FALSE(direct_light(world, on_ball(world, down), {down, down}, rays).lit);  // facing away
   EXPECT_EQ(rays, 0u);
 
   s.spheres.push_back({"blocker", vec3(0.0f, 5.0f, 0.0f), 1.0f, 0.0f, {}});
   const World blocked(s);
   const vec3 up(0.0f, 1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(blocked, on_ball(blocked, up), up, up, rays, weight));
+  EXPECT_FALSE(direct_light(blocked, on_ball(blocked, up), {up, up}, rays).lit);
   EXPECT_EQ(rays, 1u);
 }
 
@@ -474,9 +474,9 @@ TEST(DirectLight, ABrightLightCloseAboveTheSurfaceIsFiniteAndMatchesTheFormula) 
   ASSERT_LT(expect, 3e38);
   ASSERT_GT(1e29 * cos_s / d2, 3.5e38);  // the case: the partial product overflows float
   std::uint64_t rays = 0;
-  float weight = -1.0f;
-  ASSERT_TRUE(direct_light(world, h, up, up, rays, weight));
-  EXPECT_NEAR(weight, expect, 1e-5 * expect);
+  const LightArrival a = direct_light(world, h, {up, up}, rays);
+  ASSERT_TRUE(a.lit);
+  EXPECT_NEAR(a.weight, expect, 1e-5 * expect);
 }
 
 // Split factors per diffuse hit: the listed ones, then 1 past the end.

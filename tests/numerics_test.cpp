@@ -34,10 +34,11 @@ std::vector<float> direct_image(Scene scene, int size) {
   const CameraFrame cam(scene.camera);
   std::vector<float> img;
   PathStats stats;
+  const PathContext ctx{world, scene.settings, stats};
   for (int i = 0; i < size; ++i)
     for (int j = 0; j < size; ++j) {
       Sampler sampler(scene.settings.sampler, std::uint32_t(i * size + j), 0, 0);
-      const vec3 L = sample_pixel(world, scene, cam, i, j, sampler, stats);
+      const vec3 L = sample_pixel(ctx, cam, Pixel{i, j}, sampler);
       img.insert(img.end(), {L.x, L.y, L.z});
     }
   return img;

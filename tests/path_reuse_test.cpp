@@ -122,9 +122,10 @@ TEST(PathReuse, BlockOfOnePixelIsThePlainEstimator) {
         const std::uint32_t pixel = std::uint32_t(i * 32 + j);
         Sampler sampler(scene.settings.sampler, pixel, k, scene.settings.seed);
         PathStats stats;
-        const vec3 plain = sample_pixel(world, scene, cam, i, j, sampler, stats);
+        const PathContext ctx{world, scene.settings, stats};
+        const vec3 plain = sample_pixel(ctx, cam, Pixel{i, j}, sampler);
         vec3 block;
-        sample_block(world, scene, cam, i, i + 1, j, j + 1, k, &block, stats);
+        sample_block(ctx, cam, PixelBlock{i, i + 1, j, j + 1}, k, &block);
         for (int c = 0; c < 3; ++c)
           ASSERT_NEAR(block[c], plain[c], 2e-5f * std::max(plain[c], 1.0f)) << i << "," << j;
         ++compared;

@@ -4,20 +4,36 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "geometry/ray.h"
+#include "render/sampling.h"
 #include "scene/scene.h"
 
 namespace whisker {
 
+// Anti-aliasing, report section 3: a Gaussian offset of the pixel position,
+// two independent N(0, 0.5^2) pixels from two uniform numbers in [0, 1)
+// by Box-Muller.
+inline glm::vec2 aa_offset(float u1, float u2) {
+  u1 = 1.0f - u1;  // (0, 1]: log stays finite
+  const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
+  float s, c;
+  sincos_turn(u2, s, c);
+  return {r * c, r * s};
+}
+
 struct CameraFrame {
   glm::dvec3 origin;  // world space, as the scene gives it
+  int width, height;  // the image, pixels
   vec3 right, up, forward;
   float half_w, half_h, focal;  // focal = W / (2 tan(fov/2)), in pixels
 
   explicit CameraFrame(const Camera& c)
       : origin(c.position),
+        width(c.width),
+        height(c.height),
         forward(view_direction(c)),
         half_w(0.5f * float(c.width)),
         half_h(0.5f * float(c.height)),

@@ -8,17 +8,25 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/offset.h"
+#include "render/scattering.h"
 #include "scene/world.h"
 
 namespace whisker {
 
-// Report section 2: L_d = I/(4 pi d^2) * rho/pi * <N, w_i> * V. At point p
-// with facing normals ng, ns, sets `weight` to everything but rho (the
-// caller's throughput holds it) and returns true when the light is in front
-// of the surface and visible; counts the shadow ray it traces in `rays`.
+// The point light's contribution at a point: whether it arrives (in front
+// of the surface and visible) and its weight.
+struct LightArrival {
+  bool lit = false;
+  float weight = 0.0f;  // everything but rho (the caller's throughput holds it)
+};
+
+// Report section 2: L_d = I/(4 pi d^2) * rho/pi * <N, w_i> * V at the hit h
+// with facing normals n; counts the shadow ray it traces in `rays`.
 // The shadow ray leaves h by the spawn rule, aimed at the light from there.
-inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng, const vec3& ns,
-                         std::uint64_t& rays, float& weight) {
+inline LightArrival direct_light(const World& world, const SurfaceHit& h, const FacingNormals& n,
+                                 std::uint64_t& rays) {
+  const vec3& ng = n.ng;
+  const vec3& ns = n.ns;
   constexpr float kPi = 3.14159265358979323846f;
   const World::Light& light = world.light();
   const vec3 to_light = light.position - h.p;
@@ -27,11 +35,11 @@ inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng
   const vec3 wi = to_light * inv_d;
   const float cos_s = glm::dot(ns, wi);
   // The geometric test keeps vertex normals from lighting the far side.
-  if (!(cos_s > 0.0f && glm::dot(ng, wi) > 0.0f)) return false;
+  if (!(cos_s > 0.0f && glm::dot(ng, wi) > 0.0f)) return {};
   ++rays;
   const Ray shadow = spawn_shadow_ray(h, light.position, wi, d2 * inv_d);
-  if (world.occluded_to_light(shadow, d2)) return false;
-  weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
+  if (world.occluded_to_light(shadow, d2)) return {};
+  float weight = light.intensity * cos_s * (inv_d * inv_d) * (1.0f / (4.0f * kPi * kPi));
   // I cos / d^2 can leave float's range before the 1/(4 pi^2) brings the term
   // back (a light 1e-5 from the surface at the scene reader's 1e30): then in
   // double, so that the term is infinite only where float cannot hold it.
@@ -40,7 +48,7 @@ inline bool direct_light(const World& world, const SurfaceHit& h, const vec3& ng
     const double dd2 = glm::dot(to, to);
     weight = float(double(light.intensity) * cos_s / (dd2 * (4.0 * double(kPi) * double(kPi))));
   }
-  return true;
+  return {true, weight};
 }
 
 }  // namespace whisker

@@ -9,25 +9,22 @@
 
 namespace whisker {
 
-// The light a path gathers from `ray` on, given its throughput `beta` so far,
-// the number of hits before it and how many of those were diffuse.
-// The ray is in render space (World).
-vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& start, vec3 beta,
-                int first_depth, int diffuse_hits, Sampler& sampler, PathStats& stats,
-                const Hit* first_hit) {
-  Ray ray = start;
-  vec3 L(0.0f);
+vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler) {
+  const RenderSettings& settings = ctx.settings;
+  Ray& ray = state.ray;
+  vec3& beta = state.beta;
+  const vec3& L = state.L;
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
-  for (int depth = first_depth; depth <= settings.max_depth; ++depth) {
+  for (; state.depth <= settings.max_depth; ++state.depth) {
     Hit hit;
-    if (first_hit) {  // the caller found this ray's hit already
-      hit = *first_hit;
-      first_hit = nullptr;
+    if (state.first_hit) {  // the caller found this ray's hit already
+      hit = *state.first_hit;
+      state.first_hit = nullptr;
     } else {
-      ++stats.rays;
-      if (!world.closest(ray, hit)) break;
+      ++ctx.stats.rays;
+      if (!ctx.world.closest(ray, hit)) break;
     }
-    const Material& m = world.material(hit);
+    const Material& m = ctx.world.material(hit);
     if (m.kind == MaterialKind::Diffuse) {
       // A path that can carry no more light ends here (the walls' albedos
       // are pure primaries): its light and bounce would both be multiplied
@@ -37,7 +34,7 @@ vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& s
       if (ends_dark(settings, beta)) return L;
     }
     SurfaceHit h;
-    world.record(ray, hit, h);
+    ctx.world.record(ray, hit, h);
     if (m.kind == MaterialKind::Mirror) {
       ray = sample_mirror(ray, h);
       continue;
@@ -46,73 +43,57 @@ vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& s
       ray = sample_glass(ray, h, m.ior, settings.fresnel, sampler);
       continue;
     }
-    if (!diffuse_vertex(world, settings, ray, h, beta, depth, diffuse_hits, sampler, stats, L, ray))
-      return L;
+    const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, sampler);
+    if (!next) return L;
+    ray = *next;
   }
   return L;
 }
 
-FacingNormals add_direct_light(const World& world, const Ray& in, const SurfaceHit& h,
-                               const vec3& beta, PathStats& stats, vec3& L) {
-  const FacingNormals n(h, in.d);
-  float weight;
-  if (direct_light(world, h, n.ng, n.ns, stats.rays, weight)) L += beta * weight;
-  return n;
+DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
+                             const vec3& beta) {
+  DirectLight out{vec3(0.0f), FacingNormals(h, in.d)};
+  const LightArrival a = direct_light(ctx.world, h, out.n, ctx.stats.rays);
+  if (a.lit) out.L = beta * a.weight;
+  return out;
 }
 
-bool diffuse_vertex(const World& world, const RenderSettings& settings, const Ray& in,
-                    const SurfaceHit& h, const vec3& beta, int depth, int& diffuse_hits,
-                    Sampler& sampler, PathStats& stats, vec3& L, Ray& next) {
-  const FacingNormals n = add_direct_light(world, in, h, beta, stats, L);
-  if (!settings.indirect || depth == settings.max_depth) return false;
-  const int split = split_factor(settings, diffuse_hits++, beta);
-  const Frame frame(n.ns);
+std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
+                                  PathState& state, Sampler& sampler) {
+  const RenderSettings& settings = ctx.settings;
+  const DirectLight direct = add_direct_light(ctx, in, h, state.beta);
+  state.L += direct.L;
+  if (!settings.indirect || state.depth == settings.max_depth) return std::nullopt;
+  const int split = split_factor(settings, state.diffuse_hits++, state.beta);
+  const Frame frame(direct.n.ns);
   if (split > 1) {
     vec3 sum(0.0f);
     for (int k = 0; k < split; ++k) {
       Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
-      const Ray r = sample_diffuse(h, frame, branch);
-      sum += trace_path(world, settings, r, beta, depth + 1, diffuse_hits, branch, stats);
+      const PathState b{sample_diffuse(h, frame, branch), state.beta, state.depth + 1,
+                        state.diffuse_hits};
+      sum += trace_path(ctx, b, branch);
     }
-    L = L + sum / float(split);
-    return false;
+    state.L = state.L + sum / float(split);
+    return std::nullopt;
   }
-  next = sample_diffuse(h, frame, sampler);
-  return true;
+  return sample_diffuse(h, frame, sampler);
 }
 
-Ray camera_ray(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
-               Sampler& sampler) {
-  float dx = 0.0f, dy = 0.0f;
-  if (scene.settings.aa) {
-    // Box-Muller (report section 3): two independent N(0, 0.5^2) offsets in pixels.
+Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
+  glm::vec2 d(0.0f);
+  if (ctx.settings.aa) {
     float u1, u2;
     sampler.get2d(u1, u2);
-    u1 = 1.0f - u1;  // (0, 1]: log stays finite
-    const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
-    float s, c;
-    sincos_turn(u2, s, c);
-    dx = r * c;
-    dy = r * s;
+    d = aa_offset(u1, u2);
   }
-  return world.to_render(cam.origin, cam.direction(i, j, dx, dy));
+  return ctx.world.to_render(cam.origin, cam.direction(px.i, px.j, d.x, d.y));
 }
 
-vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
-              PathStats& stats) {
-  return radiance_from_render(world, settings, world.to_render(ray), sampler, stats);
-}
-
-vec3 radiance_from_render(const World& world, const RenderSettings& settings, const Ray& ray,
-                          Sampler& sampler, PathStats& stats) {
+vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
+  const Ray ray = camera_ray(ctx, cam, px, sampler);
   const FlushDenormals ftz;
-  return trace_path(world, settings, ray, vec3(1.0f), 0, 0, sampler, stats);
-}
-
-vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
-                  Sampler& sampler, PathStats& stats) {
-  return radiance_from_render(world, scene.settings, camera_ray(world, scene, cam, i, j, sampler),
-                              sampler, stats);
+  return trace_path(ctx, PathState{ray}, sampler);
 }
 
 }  // namespace whisker

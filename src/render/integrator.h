@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 #include <xmmintrin.h>
 
@@ -21,33 +22,53 @@ struct PathStats {
   std::uint64_t rays = 0;  // intersection and shadow rays traced
 };
 
-// Radiance arriving along the world-space `ray` (the world's light intensity applied), with
-// at most settings.max_depth hits after the first. The ray is unbounded:
-// only its origin and direction are used.
-vec3 radiance(const World& world, const RenderSettings& settings, Ray ray, Sampler& sampler,
-              PathStats& stats);
-// The same for a ray already in the world's render space (World::to_render).
-vec3 radiance_from_render(const World& world, const RenderSettings& settings, const Ray& ray,
-                          Sampler& sampler, PathStats& stats);
+// What every path of a render shares: the compiled scene, the settings and
+// the counters (one per thread). Samplers are per path (splitting branches
+// them), so they travel beside it.
+struct PathContext {
+  const World& world;
+  const RenderSettings& settings;
+  PathStats& stats;
+};
 
-// One sample of pixel (i, j): camera ray (with Gaussian jitter when AA is on)
-// and its radiance. `world` is built from `scene`.
-vec3 sample_pixel(const World& world, const Scene& scene, const CameraFrame& cam, int i,
-                  int j, Sampler& sampler, PathStats& stats);
+// A pixel: row i from the top, column j.
+struct Pixel {
+  int i = 0, j = 0;
+};
+
+// A path's state where it continues: the ray it follows (render space), its
+// throughput so far, the hits before it (`depth`), how many were diffuse,
+// and the light it has gathered. With `first_hit`, the ray's closest hit,
+// already found by the caller.
+struct PathState {
+  Ray ray;
+  vec3 beta{1.0f};
+  int depth = 0;
+  int diffuse_hits = 0;
+  vec3 L{0.0f};
+  const Hit* first_hit = nullptr;
+};
+
+// The numbers of pixel px's sample number `sample`: the one place a pixel's
+// sampler is made, whichever estimator draws from it.
+inline Sampler pixel_sampler(const RenderSettings& s, const CameraFrame& cam, Pixel px,
+                             std::uint64_t sample) {
+  const std::uint32_t pixel = std::uint32_t(px.i) * std::uint32_t(cam.width) + std::uint32_t(px.j);
+  return Sampler(s.sampler, pixel, sample, s.seed);
+}
+
+// One sample of pixel px: the camera ray (with the AA jitter, camera.h) and
+// its radiance (the world's light intensity applied), with at most
+// settings.max_depth hits after the first.
+vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
 
 // ---- the path loop's parts, shared with path reuse (path_reuse.h) --------
 
-// Pixel (i, j)'s camera ray in render space, with the Gaussian jitter of AA
-// (the sample's first 2D numbers) when it is on.
-Ray camera_ray(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
-               Sampler& sampler);
+// Pixel px's camera ray in render space, jittered when AA is on.
+Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
 
-// The light a path gathers from `ray` on, given its throughput `beta` so far,
-// the number of hits before it (`depth`) and how many were diffuse. With
-// `first_hit`, that is the ray's closest hit, already found by the caller.
-vec3 trace_path(const World& world, const RenderSettings& settings, const Ray& ray, vec3 beta,
-                int depth, int diffuse_hits, Sampler& sampler, PathStats& stats,
-                const Hit* first_hit = nullptr);
+// The light a path gathers from `state` on.
+vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler);
 
 // Whether a path of throughput beta ends here (RenderSettings::zero_cutoff):
 // it can carry no more light, so its light and bounces would all be zero.
@@ -55,19 +76,23 @@ inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
   return settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f;
 }
 
-// Adds the point light's direct light at the recorded diffuse hit h of ray
-// `in` (throughput beta, the albedo in it) to L; returns h's normals turned
-// to the side `in` came from, the frame of its bounces.
-FacingNormals add_direct_light(const World& world, const Ray& in, const SurfaceHit& h,
-                               const vec3& beta, PathStats& stats, vec3& L);
+// The point light's direct light at a recorded diffuse hit, given the
+// throughput there (the albedo in it), and the hit's normals turned to the
+// side the ray came from: the frame of its bounces.
+struct DirectLight {
+  vec3 L{0.0f};
+  FacingNormals n;
+};
+DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
+                             const vec3& beta);
 
-// At the recorded diffuse hit h of ray `in` (the albedo already in beta):
-// adds its direct light to L and, when the path goes on, either splits (the
-// branches' mean added to L; returns false) or sets `next` to the one bounce
-// and returns true (the caller follows it). False also where the path ends.
-bool diffuse_vertex(const World& world, const RenderSettings& settings, const Ray& in,
-                    const SurfaceHit& h, const vec3& beta, int depth, int& diffuse_hits,
-                    Sampler& sampler, PathStats& stats, vec3& L, Ray& next);
+// At the recorded diffuse hit h of ray `in`, for the path in `state` (the
+// albedo already in its beta): adds its direct light to state.L and, when
+// the path goes on, either splits (the branches' mean added to state.L; the
+// path ends: returns nothing) or returns the one bounce the caller follows.
+// Nothing also where the path ends. Counts the hit in state.diffuse_hits.
+std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
+                                  PathState& state, Sampler& sampler);
 
 // Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a camera
 // sample is traced, the caller's mode restored after. A path's throughput

@@ -33,61 +33,86 @@ struct Bounce {
   int owner = 0;  // the pixel that sent it
 };
 
-// The camera hit of pixel (i, j): its direct light into L and, when it is a
-// technique, `first`; otherwise (no diffuse hit, or nothing to carry) the
-// whole sample as sample_pixel traces it.
-void first_hit(const World& world, const Scene& scene, const CameraFrame& cam, int i, int j,
-               Sampler& sampler, PathStats& stats, FirstHit& first, vec3& L) {
-  const RenderSettings& s = scene.settings;
-  const Ray ray = camera_ray(world, scene, cam, i, j, sampler);
+// The camera hit of pixel px: when it is a technique, `first` (with the hit's
+// direct light in `L`); otherwise (no diffuse hit, or nothing to carry) the
+// whole sample as sample_pixel traces it, in `L`.
+struct CameraHit {
+  FirstHit first;
+  vec3 L{0.0f};
+};
+CameraHit first_hit(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
+  const RenderSettings& s = ctx.settings;
+  CameraHit out;
+  const Ray ray = camera_ray(ctx, cam, px, sampler);
   Hit hit;
-  ++stats.rays;
-  if (!world.closest(ray, hit)) return;
-  const Material& m = world.material(hit);
+  ++ctx.stats.rays;
+  if (!ctx.world.closest(ray, hit)) return out;
+  const Material& m = ctx.world.material(hit);
   if (m.kind != MaterialKind::Diffuse) {
-    L = trace_path(world, s, ray, vec3(1.0f), 0, 0, sampler, stats, &hit);
-    return;
+    PathState state{ray};
+    state.first_hit = &hit;
+    out.L = trace_path(ctx, state, sampler);
+    return out;
   }
+  FirstHit& first = out.first;
   first.beta = m.albedo;
-  if (ends_dark(s, first.beta)) return;
-  world.record(ray, hit, first.h);
-  first.ns = add_direct_light(world, ray, first.h, first.beta, stats, L).ns;
+  if (ends_dark(s, first.beta)) return out;
+  ctx.world.record(ray, hit, first.h);
+  const DirectLight direct = add_direct_light(ctx, ray, first.h, first.beta);
+  out.L += direct.L;
+  first.ns = direct.n.ns;
   first.bounces = split_factor(s, 0, first.beta);
+  return out;
 }
 
-// Pixel p's bounces: those meeting a diffuse point go to `out` with L_o
-// traced in the channels `carried`; the others are finished for p alone.
-void send_bounces(const World& world, const RenderSettings& s, const FirstHit& x, int p,
-                  Sampler& sampler, const vec3& carried, PathStats& stats,
-                  std::vector<Bounce>& out, vec3& L) {
+// A technique of the block: pixel `pixel`'s first hit, and the channels
+// some pixel of the block carries (the bounces' light is traced in those).
+struct Technique {
+  const FirstHit& x;
+  int pixel = 0;
+  vec3 carried{0.0f};
+};
+
+// The technique's bounces: those meeting a diffuse point go to `out` with
+// L_o traced in the carried channels; the others are finished for its pixel
+// alone, their light added to its light L so far, which is returned.
+vec3 send_bounces(const PathContext& ctx, const Technique& t, Sampler& sampler,
+                  std::vector<Bounce>& out, vec3 L) {
+  const FirstHit& x = t.x;
   const Frame frame(x.ns);
   const float inv_n = 1.0f / float(x.bounces);
   for (int b = 0; b < x.bounces; ++b) {
     Sampler branch = sampler.branch(std::uint32_t(b), std::uint32_t(x.bounces));
     const Ray ray = sample_diffuse(x.h, frame, branch);
     Hit hit;
-    ++stats.rays;
-    if (!world.closest(ray, hit)) continue;
-    const Material& m = world.material(hit);
+    ++ctx.stats.rays;
+    if (!ctx.world.closest(ray, hit)) continue;
+    const Material& m = ctx.world.material(hit);
     if (m.kind != MaterialKind::Diffuse) {  // glass or mirror: its light depends on the way in
-      L += trace_path(world, s, ray, x.beta, 1, 1, branch, stats, &hit) * inv_n;
+      PathState state{ray, x.beta, 1, 1};
+      state.first_hit = &hit;
+      L += trace_path(ctx, state, branch) * inv_n;
       continue;
     }
-    const vec3 beta = carried * m.albedo;
-    if (ends_dark(s, beta)) continue;
+    const vec3 beta = t.carried * m.albedo;
+    if (ends_dark(ctx.settings, beta)) continue;
     SurfaceHit h;
-    world.record(ray, hit, h);
+    ctx.world.record(ray, hit, h);
     Bounce y;
     y.p = h.p;
     y.ng = glm::dot(h.ng, ray.d) < 0.0f ? h.ng : -h.ng;
-    y.owner = p;
+    y.owner = t.pixel;
     y.sphere = h.sphere;
-    int diffuse_hits = 1;
-    Ray next;
-    if (diffuse_vertex(world, s, ray, h, beta, 1, diffuse_hits, branch, stats, y.Lo, next))
-      y.Lo += trace_path(world, s, next, beta, 2, diffuse_hits, branch, stats);
+    PathState state{ray, beta, 1, 1};
+    if (const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, branch)) {
+      y.Lo = state.L;
+      y.Lo += trace_path(ctx, PathState{*next, beta, 2, state.diffuse_hits}, branch);
+    } else {
+      y.Lo = state.L;
+    }
     out.push_back(y);
   }
+  return L;
 }
 
 // g = cos_x cos_y / d^2 between technique x and the bounce y (pi cancels
@@ -103,17 +128,23 @@ float geometry(const FirstHit& x, const Bounce& y) {
 
 // Shares bounce y among the techniques: the balance heuristic's weight
 // n_j g_j / sum_m n_m g_m over the bounce count of j, i.e. g_j / sum.
-void share(const World& world, const FirstHit* x, int pixels, const Bounce& y,
-           PathStats& stats, vec3* L) {
+// x: the block's pixels' first hits (`pixels` of them).
+struct BlockHits {
+  const FirstHit* x;
+  int pixels;
+};
+void share(const PathContext& ctx, BlockHits block, const Bounce& y, vec3* L) {
+  const FirstHit* x = block.x;
+  const int pixels = block.pixels;
   float g[kMaxPixels] = {};
   float sum = 0.0f;
   for (int m = 0; m < pixels; ++m) {
     if (x[m].bounces == 0) continue;  // not a technique: g stays 0
     g[m] = geometry(x[m], y);
     if (g[m] > 0.0f && m != y.owner) {
-      ++stats.rays;
+      ++ctx.stats.rays;
       // y's own sphere cannot block: geometry() checked that x sees its outer side.
-      if (world.occluded(spawn_shadow_ray(x[m].h, y.p), y.sphere)) g[m] = 0.0f;
+      if (ctx.world.occluded(spawn_shadow_ray(x[m].h, y.p), y.sphere)) g[m] = 0.0f;
     }
     sum += float(x[m].bounces) * g[m];
   }
@@ -129,10 +160,10 @@ void share(const World& world, const FirstHit* x, int pixels, const Bounce& y,
 
 }  // namespace
 
-void sample_block(const World& world, const Scene& scene, const CameraFrame& cam, int i0,
-                  int i1, int j0, int j1, std::uint64_t sample, vec3* out, PathStats& stats) {
-  const RenderSettings& s = scene.settings;
-  const int cols = j1 - j0, pixels = (i1 - i0) * cols;
+void sample_block(const PathContext& ctx, const CameraFrame& cam, const PixelBlock& block,
+                  std::uint64_t sample, vec3* out) {
+  const RenderSettings& s = ctx.settings;
+  const int cols = block.j1 - block.j0, pixels = (block.i1 - block.i0) * cols;
   FirstHit x[kMaxPixels];
   thread_local std::vector<Bounce> bounces;
   bounces.clear();
@@ -142,24 +173,24 @@ void sample_block(const World& world, const Scene& scene, const CameraFrame& cam
     Sampler samplers[kMaxPixels];
     vec3 carried(0.0f);
     for (int p = 0; p < pixels; ++p) {
-      const int i = i0 + p / cols, j = j0 + p % cols;
-      const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(scene.camera.width) + std::uint32_t(j);
-      samplers[p] = Sampler(s.sampler, pixel, sample, s.seed);
-      out[p] = vec3(0.0f);
-      first_hit(world, scene, cam, i, j, samplers[p], stats, x[p], out[p]);
+      const Pixel px{block.i0 + p / cols, block.j0 + p % cols};
+      samplers[p] = pixel_sampler(s, cam, px, sample);
+      CameraHit c = first_hit(ctx, cam, px, samplers[p]);
+      x[p] = c.first;
+      out[p] = c.L;
       if (!reuses_paths(s)) x[p].bounces = 0;  // nothing leaves the first hit
-      for (int c = 0; c < 3; ++c)
-        if (x[p].bounces > 0 && x[p].beta[c] != 0.0f) carried[c] = 1.0f;
+      for (int ch = 0; ch < 3; ++ch)
+        if (x[p].bounces > 0 && x[p].beta[ch] != 0.0f) carried[ch] = 1.0f;
     }
     for (int p = 0; p < pixels; ++p)
       if (x[p].bounces > 0)
-        send_bounces(world, s, x[p], p, samplers[p], carried, stats, bounces, out[p]);
+        out[p] = send_bounces(ctx, Technique{x[p], p, carried}, samplers[p], bounces, out[p]);
   }
   // The sharing keeps gradual underflow: a bounce's light times a small
   // weight can fall below float's normal range where the pixel's own light
   // does not (a light of intensity 1e-30), and flushed to zero it would
   // bias the pixel.
-  for (const Bounce& y : bounces) share(world, x, pixels, y, stats, out);
+  for (const Bounce& y : bounces) share(ctx, BlockHits{x, pixels}, y, out);
 }
 
 }  // namespace whisker

@@ -24,10 +24,15 @@ inline bool reuses_paths(const RenderSettings& s) {
   return s.reuse > 1 && s.indirect && s.max_depth > 0;
 }
 
-// One sample, number `sample`, of each pixel of the block of rows [i0, i1)
-// and columns [j0, j1) (at most kMaxReuseBlock on a side), written to
-// out[(i - i0) * (j1 - j0) + (j - j0)]. Each pixel draws its numbers from
-// its own Sampler, as sample_pixel does.
+// A block of pixels: rows [i0, i1), columns [j0, j1).
+struct PixelBlock {
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
+// One sample, number `sample`, of each pixel of the block (at most
+// kMaxReuseBlock on a side), written to out[(i - i0) * (j1 - j0) + (j - j0)].
+// Each pixel draws its numbers from its own Sampler (pixel_sampler), as
+// sample_pixel does.
 //
 // A pixel whose camera ray meets a diffuse surface at x_j sends its
 // split[0] bounces from there as usual; every bounce that meets a diffuse
@@ -40,7 +45,7 @@ inline bool reuses_paths(const RenderSettings& s) {
 // plain estimator rho L_o / n. A bounce that meets glass or a mirror (whose
 // light depends on the direction) and a pixel whose first hit is not
 // diffuse keep to their own pixel, as sample_pixel traces them.
-void sample_block(const World& world, const Scene& scene, const CameraFrame& cam, int i0,
-                  int i1, int j0, int j1, std::uint64_t sample, vec3* out, PathStats& stats);
+void sample_block(const PathContext& ctx, const CameraFrame& cam, const PixelBlock& block,
+                  std::uint64_t sample, vec3* out);
 
 }  // namespace whisker

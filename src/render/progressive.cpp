@@ -11,8 +11,7 @@
 
 #include "scene/world.h"
 #include "render/camera.h"
-#include "render/integrator.h"
-#include "render/path_reuse.h"
+#include "render/estimator.h"
 #include "render/sampler.h"
 
 namespace whisker {
@@ -270,7 +269,6 @@ void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
   const int tiles = job.tiles_x * job.tiles_y;
   const Scene& scene = job.scene;
-  const std::uint64_t seed = scene.settings.seed;
   for (;;) {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
@@ -281,15 +279,14 @@ void ProgressiveRenderer::run_tiles() {
     const int i0 = ty * kTile, j0 = tx * kTile;
     const int i1 = std::min(job.height, i0 + kTile), j1 = std::min(job.width, j0 + kTile);
     PathStats stats;
-    std::uint64_t nans = 0;
+    const PathContext ctx{job.world, scene.settings, stats};
     if (job.preview_pass) {
       // One sample at each block's first pixel, copied over the block. Its
       // sample index lies far beyond any real one, so no sample repeats.
       for (int i = i0; i < i1; i += kPreviewBlock) {
         for (int j = j0; j < j1; j += kPreviewBlock) {
-          const std::uint32_t pixel = std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j);
-          Sampler sampler(scene.settings.sampler, pixel, ~std::uint64_t(0), seed);
-          const vec3 c = sample_pixel(job.world, scene, *job.cam, i, j, sampler, stats);
+          Sampler sampler = pixel_sampler(scene.settings, *job.cam, Pixel{i, j}, ~std::uint64_t(0));
+          const vec3 c = sample_pixel(ctx, *job.cam, Pixel{i, j}, sampler);
           job.film.fill_preview(j, i, std::min(j1, j + kPreviewBlock),
                                 std::min(i1, i + kPreviewBlock), c);
         }
@@ -297,50 +294,12 @@ void ProgressiveRenderer::run_tiles() {
       job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
       continue;
     }
-    nans = run_blocks(i0, i1, j0, j1, stats);
+    const std::uint64_t nans =
+        render_tile(ctx, *job.cam, TileWork{{i0, i1, j0, j1}, job.sample_base, job.pass_spp}, job.film);
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
     job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
     progress_tiles_done_.fetch_add(1, std::memory_order_relaxed);
   }
-}
-
-// The tile's pixels [i0, i1) x [j0, j1), this pass's samples of each: with
-// path reuse in blocks of settings.reuse on a side, from the tile's corner
-// (tiles never split a block, so an image is the same whatever the thread
-// count), otherwise pixel by pixel. Returns the samples dropped.
-std::uint64_t ProgressiveRenderer::run_blocks(int i0, int i1, int j0, int j1, PathStats& stats) {
-  Job& job = *job_;
-  const Scene& scene = job.scene;
-  const bool reuse = reuses_paths(scene.settings);
-  const int side = reuse ? std::min(scene.settings.reuse, kMaxReuseBlock) : 1;
-  std::uint64_t nans = 0;
-  // Once per tile, not per block: a pixel by itself clears one sum, not 64.
-  PixelSum sums[kMaxReuseBlock * kMaxReuseBlock];
-  vec3 out[kMaxReuseBlock * kMaxReuseBlock];
-  for (int bi = i0; bi < i1; bi += side) {
-    for (int bj = j0; bj < j1; bj += side) {
-      const int bi1 = std::min(i1, bi + side), bj1 = std::min(j1, bj + side);
-      const int cols = bj1 - bj, pixels = (bi1 - bi) * cols;
-      std::fill_n(sums, pixels, PixelSum{});
-      for (int k = 0; k < job.pass_spp; ++k) {
-        const std::uint64_t sample = job.sample_base + std::uint64_t(k);
-        if (reuse) {
-          sample_block(job.world, scene, *job.cam, bi, bi1, bj, bj1, sample, out, stats);
-        } else {  // one pixel
-          const std::uint32_t pixel = std::uint32_t(bi) * std::uint32_t(job.width) + std::uint32_t(bj);
-          Sampler sampler(scene.settings.sampler, pixel, sample, scene.settings.seed);
-          out[0] = sample_pixel(job.world, scene, *job.cam, bi, bj, sampler, stats);
-        }
-        for (int p = 0; p < pixels; ++p) sums[p].add(out[p], sample);
-      }
-      for (int p = 0; p < pixels; ++p) {
-        const int i = bi + p / cols, j = bj + p % cols;
-        job.film.add(std::uint32_t(i) * std::uint32_t(job.width) + std::uint32_t(j), sums[p]);
-        nans += sums[p].dropped;
-      }
-    }
-  }
-  return nans;
 }
 
 void ProgressiveRenderer::end_pass() {

@@ -94,7 +94,6 @@ class ProgressiveRenderer {
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
   void run_tiles();
-  std::uint64_t run_blocks(int i0, int i1, int j0, int j1, struct PathStats& stats);
   void end_pass();     // thread 0 only: merge and publish
   void adopt_start(const RenderStart& start);  // thread 0, at adoption
 

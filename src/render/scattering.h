@@ -40,6 +40,7 @@ struct FacingNormals {
   FacingNormals(const SurfaceHit& h, const vec3& d)
       : ng(glm::dot(h.ng, d) < 0.0f ? h.ng : -h.ng),
         ns(glm::dot(h.ns, ng) >= 0.0f ? h.ns : -h.ns) {}
+  FacingNormals(const vec3& geometric, const vec3& shading) : ng(geometric), ns(shading) {}
 };
 
 // Diffuse, report section 3: a cosine-distributed bounce in `frame` (built
