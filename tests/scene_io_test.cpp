@@ -39,7 +39,7 @@ TEST(SceneFiles, BundledScenesHoldTheReportsNumbers) {
     EXPECT_EQ(s.light.position, glm::dvec3(-10, 20, 40));
     EXPECT_EQ(s.light.intensity, 2e10f);
     EXPECT_EQ(s.settings.max_depth, 5);
-    // The room: six walls as SCENES.md lists them.
+    // The room: six walls as docs/SCENES.md lists them.
     ASSERT_GE(s.spheres.size(), 7u);
     EXPECT_EQ(s.spheres[0].center, glm::dvec3(0, 1000, 0));
     EXPECT_EQ(s.spheres[0].radius, 940.0f);

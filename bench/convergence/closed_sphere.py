@@ -41,7 +41,7 @@ def main():
     with open(scene_path, "w") as f:
         json.dump(scene, f, indent=2)
 
-    # Camera looks down -z with +y up (SCENES.md conventions), so the camera
+    # Camera looks down -z with +y up (docs/SCENES.md conventions), so the camera
     # frame is the world frame: direction (j - W/2 + 0.5, H/2 - i - 0.5, -focal).
     focal = res / (2.0 * math.tan(math.radians(FOV) / 2.0))
     B = DEPTH + 1

@@ -1,4 +1,4 @@
-// Camera rays, as in SCENES.md "Conventions".
+// Camera rays, as in docs/SCENES.md "Conventions".
 #pragma once
 
 #include <cmath>

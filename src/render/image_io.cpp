@@ -23,7 +23,7 @@ namespace whisker {
 namespace fs = std::filesystem;
 
 unsigned char to_srgb8(float radiance) {
-  // SCENES.md: min(255, L^(1/2.2)); negative or NaN never happen in the
+  // docs/SCENES.md: min(255, L^(1/2.2)); negative or NaN never happen in the
   // buffer, but clamp them to black rather than trust that.
   if (!(radiance > 0.0f)) return 0;
   const float v = std::pow(radiance, 1.0f / 2.2f);

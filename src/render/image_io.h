@@ -19,7 +19,7 @@ struct ImageError : std::runtime_error {
 };
 
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
-// (light intensity applied), SCENES.md "Pixel value shown".
+// (light intensity applied), docs/SCENES.md "Pixel value shown".
 unsigned char to_srgb8(float radiance);
 
 // The report's mapping of `img` (to_srgb8) as an 8-bit PNG.
@@ -38,7 +38,7 @@ void write_float_image(const std::string& path, const Image& img,
                        const ImageAttributes& attributes = {});
 
 // The radiance that the report's mapping min(255, L^(1/2.2)) shows as full
-// white: 255^2.2 (SCENES.md "Pixel value shown").
+// white: 255^2.2 (docs/SCENES.md "Pixel value shown").
 float report_white();
 // `img` in display-referred units, 1.0 = report_white(): an HDR viewer at
 // exposure 0 (sRGB, about L^(1/2.2)) then shows what the PNG shows, unclipped.

@@ -26,7 +26,7 @@ bool refract(const vec3& d, const vec3& n, float eta, vec3& out);
 
 // Schlick's approximation of the Fresnel reflectance.
 inline float schlick(float cos_i, float n1, float n2) {
-  // R = R0 + (1 - R0)(1 - |cos|)^5, R0 = ((n1 - n2)/(n1 + n2))^2 (SCENES.md).
+  // R = R0 + (1 - R0)(1 - |cos|)^5, R0 = ((n1 - n2)/(n1 + n2))^2 (docs/SCENES.md).
   const float r0 = (n1 - n2) / (n1 + n2);
   const float R0 = r0 * r0;
   const float c = 1.0f - std::fabs(cos_i);

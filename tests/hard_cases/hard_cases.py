@@ -277,7 +277,7 @@ class Reference:
         return tuple(a * k for a in alb), ambiguous
 
     def image(self, cam):
-        """Pixel centres, as SCENES.md's camera (no anti-aliasing). Traced
+        """Pixel centres, as docs/SCENES.md's camera (no anti-aliasing). Traced
         relative to the camera (the scene moved so that the camera is at 0,
         in double): the tolerances above are relative to the distances in
         the scene, so a small scene far from the origin is traced as well as
