@@ -62,9 +62,9 @@ int run_rays(const Options& opt) {
   std::vector<Ray> rays = bench::read_rays(opt.file);
   if (opt.limit > 0 && opt.limit < rays.size()) rays.resize(opt.limit);
   const std::vector<Triangle> tris = subdivide(bench::load_cat(opt.mesh), opt.subdivide);
-  AccelKind kind = AccelKind::Sah;
+  BvhMethod kind = BvhMethod::Sah;
   parse(opt.accel, kind);  // CLI11 has checked the name
-  const Bvh bvh = Bvh::build(tris, bvh_method(kind));
+  const Bvh bvh = Bvh::build(tris, kind);
   auto trace = [&](const Ray& r, float& t) {
     Hit h;
     if (!bvh.intersect(r, h)) return false;

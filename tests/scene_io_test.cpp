@@ -195,7 +195,7 @@ TEST(SettingsTable, EveryFieldReachesTheFileAndBackAndCountsInEquality) {
   const Scene back = parse_scene(scene_to_json(all), "roundtrip.json");
   EXPECT_EQ(back.settings, all.settings);
   EXPECT_EQ(back.settings.split, std::vector<int>({2, 3}));
-  EXPECT_EQ(back.settings.accel, AccelKind::BBox);
+  EXPECT_EQ(back.settings.accel, BvhMethod::BBox);
 }
 
 TEST(SettingsTable, RangesOfTheFileAndTheCommandLineComeFromTheTable) {
@@ -231,7 +231,7 @@ TEST(SettingsTable, EnumNamesRoundTrip) {
     EXPECT_EQ(k, kind);
     EXPECT_STREQ(to_string(kind), name);
   }
-  EXPECT_EQ(name_list(AccelKind{}), "brute, bbox, midpoint or sah");
+  EXPECT_EQ(name_list(BvhMethod{}), "brute, bbox, midpoint or sah");
   SamplerKind s = SamplerKind::Sobol;
   EXPECT_FALSE(parse("halton", s));
   EXPECT_EQ(s, SamplerKind::Sobol);

@@ -1,7 +1,7 @@
 // How the triangle BVH is built (see bvh.h): every triangle tested (Brute),
 // the same behind one bounding box (BBox), or a binary tree, split by the
 // report's longest-axis barycentre rule (Midpoint) or by binned SAH (Sah),
-// collapsed to 8-wide. The scene's AccelKind maps onto it one to one.
+// collapsed to 8-wide. Scene files and --accel name it (RenderSettings::accel).
 #pragma once
 
 #include <cstdint>

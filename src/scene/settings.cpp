@@ -13,10 +13,10 @@ namespace {
 
 constexpr EnumName<SamplerKind> kSamplers[] = {{SamplerKind::Independent, "independent"},
                                                {SamplerKind::Sobol, "sobol"}};
-constexpr EnumName<AccelKind> kAccels[] = {{AccelKind::Brute, "brute"},
-                                           {AccelKind::BBox, "bbox"},
-                                           {AccelKind::Midpoint, "midpoint"},
-                                           {AccelKind::Sah, "sah"}};
+constexpr EnumName<BvhMethod> kAccels[] = {{BvhMethod::Brute, "brute"},
+                                           {BvhMethod::BBox, "bbox"},
+                                           {BvhMethod::Midpoint, "midpoint"},
+                                           {BvhMethod::Sah, "sah"}};
 
 using R = RenderSettings;
 
@@ -101,7 +101,7 @@ std::string enum_from_text(std::string_view text, E& out) {
 }  // namespace
 
 std::span<const EnumName<SamplerKind>> enum_names(SamplerKind) { return kSamplers; }
-std::span<const EnumName<AccelKind>> enum_names(AccelKind) { return kAccels; }
+std::span<const EnumName<BvhMethod>> enum_names(BvhMethod) { return kAccels; }
 
 std::span<const SettingField> setting_fields() { return kFields; }
 
@@ -142,7 +142,7 @@ std::string set_from_text(const SettingField& f, std::string_view text, RenderSe
     }
     std::string operator()(int R::*m) const { return integer_from_text(f, text, s.*m); }
     std::string operator()(std::uint64_t R::*m) const { return integer_from_text(f, text, s.*m); }
-    std::string operator()(AccelKind R::*m) const { return enum_from_text(text, s.*m); }
+    std::string operator()(BvhMethod R::*m) const { return enum_from_text(text, s.*m); }
     std::string operator()(SamplerKind R::*m) const { return enum_from_text(text, s.*m); }
     std::string operator()(std::vector<int> R::*m) const { return split_from_text(f, text, s.*m); }
     std::string operator()(vec3 R::*m) const {

@@ -14,6 +14,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "geometry/bvh_method.h"
+
 namespace whisker {
 
 using glm::vec3;
@@ -22,8 +24,6 @@ using glm::vec3;
 // report's method) or Owen-scrambled Sobol points.
 enum class SamplerKind : std::uint8_t { Independent, Sobol };
 
-// Acceleration structure for the triangles.
-enum class AccelKind : std::uint8_t { Brute, BBox, Midpoint, Sah };
 
 struct RenderSettings {
   int spp = 1;            // samples per pixel per pass
@@ -33,7 +33,7 @@ struct RenderSettings {
   bool aa = false;        // Gaussian pixel jitter, sigma 0.5 px
   std::uint64_t seed = 0;
   int target_spp = 0;     // stop accumulating here (0 = never)
-  AccelKind accel = AccelKind::Sah;
+  BvhMethod accel = BvhMethod::Sah;  // the triangles' acceleration structure
   SamplerKind sampler = SamplerKind::Sobol;
   bool zero_cutoff = true;  // end paths whose throughput is exactly zero
   // Splitting: at the d-th diffuse hit of a path (d = 0: the first), split[d]
@@ -62,7 +62,7 @@ struct EnumName {
   const char* name;
 };
 std::span<const EnumName<SamplerKind>> enum_names(SamplerKind);
-std::span<const EnumName<AccelKind>> enum_names(AccelKind);
+std::span<const EnumName<BvhMethod>> enum_names(BvhMethod);
 
 template <class E>
 concept NamedEnum = requires(E e) { enum_names(e); };
@@ -96,7 +96,7 @@ std::string name_list(E e) {
 // ---- the schema ----------------------------------------------------------
 struct SettingField {
   using Member = std::variant<bool RenderSettings::*, int RenderSettings::*,
-                              std::uint64_t RenderSettings::*, AccelKind RenderSettings::*,
+                              std::uint64_t RenderSettings::*, BvhMethod RenderSettings::*,
                               SamplerKind RenderSettings::*, std::vector<int> RenderSettings::*,
                               vec3 RenderSettings::*>;
   const char* key;     // scene file and stats JSON ("max_depth")

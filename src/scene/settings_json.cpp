@@ -54,7 +54,7 @@ struct Reader {
   void operator()(std::uint64_t R::*m) const {
     r.*m = std::uint64_t(f.integer(d.key, (long long)d.lo, (long long)d.hi, (long long)(r.*m)));
   }
-  void operator()(AccelKind R::*m) const { r.*m = read_enum<AccelKind>(f, d.key); }
+  void operator()(BvhMethod R::*m) const { r.*m = read_enum<BvhMethod>(f, d.key); }
   void operator()(SamplerKind R::*m) const { r.*m = read_enum<SamplerKind>(f, d.key); }
   void operator()(std::vector<int> R::*m) const { r.*m = read_split(f, d.key); }
   void operator()(vec3 R::*m) const { r.*m = f.vector(d.key, d.lo, d.hi, r.*m); }

@@ -11,16 +11,6 @@
 
 namespace whisker {
 
-BvhMethod bvh_method(AccelKind k) {
-  switch (k) {
-    case AccelKind::Brute: return BvhMethod::Brute;
-    case AccelKind::BBox: return BvhMethod::BBox;
-    case AccelKind::Midpoint: return BvhMethod::Midpoint;
-    case AccelKind::Sah: break;
-  }
-  return BvhMethod::Sah;
-}
-
 World::World(const Scene& scene, const World* reuse) {
   origin_ = glm::dvec3(scene.camera.position);
   const auto here = [&](const glm::dvec3& p) { return to_render(p); };
@@ -52,7 +42,7 @@ World::World(const Scene& scene, const World* reuse) {
     objects_ = ObjectBvh(spheres_, Box3{});
     return;
   }
-  const BvhMethod method = bvh_method(scene.settings.accel);
+  const BvhMethod method = scene.settings.accel;
   // The triangles are in render space: a BVH is shared only by Worlds with
   // the same camera position (a moved camera rebuilds it).
   if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&

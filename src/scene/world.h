@@ -20,9 +20,6 @@
 
 namespace whisker {
 
-// The scene's name for a BVH method (RenderSettings::accel) to geometry's.
-BvhMethod bvh_method(AccelKind k);
-
 struct SurfaceHit {
   float t = kInf;
   vec3 p{0.0f};   // hit point (render space; see World)
