@@ -32,6 +32,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.display_units = cl.float_units == "display";
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
+  h.one_pass_if_exact =
+      cl.frames <= 0 && !given(cl, "--target-spp") && cl.samples.empty() && cl.resume.empty();
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   install_signal_handlers(true);
   return run_headless(h);

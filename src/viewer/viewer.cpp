@@ -139,10 +139,15 @@ struct Session {
 
   // Takes a new pass if there is one: to the GPU, and its error to the plot.
   bool take_snapshot() {
-    if (!renderer.snapshot(s.snap)) return false;
+    const bool own = renderer.snapshot(s.snap);
+    const bool quick = renderer.quick_snapshot(s.quick);
+    if (!own && !quick) return false;
+    blend_for_display(s.snap, s.quick, s.applied.settings, s.shown);
+    upload_image();
+    if (!own) return true;
     s.triangles = s.snap.triangles;
     s.nodes = s.snap.bvh_nodes;
-    display.upload(s.snap, s.display.mode == 1);
+    // Numbers come from the generation's own passes only.
     s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();
     if (s.snap.generation != rse_generation) {
       s.rse_history.clear();
@@ -151,6 +156,17 @@ struct Session {
     if (!s.snap.preview && std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
     return true;
   }
+
+  // The image on the GPU: what is shown, or in the noise view the own
+  // passes (their sums of squares belong to their sums).
+  void upload_image() {
+    if (s.display.mode == 1)
+      display.upload(s.snap, true);
+    else
+      display.upload(s.shown.image, false);
+    uploaded_mode = s.display.mode == 1;
+  }
+  bool uploaded_mode = false;
 
   // Draws the panel, reads the keys and the mouse, and carries out what they
   // ask. Returns where the image goes.
@@ -197,7 +213,7 @@ struct Session {
                          rect.h / f.fb_per_win};
     draw_image_overlays(s, image_area, opt.screenshot_path.empty());
     // Switching to the noise view needs the sums of squares on the GPU.
-    if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
+    if ((s.display.mode == 1) != uploaded_mode) upload_image();
     return rect;
   }
 
@@ -211,11 +227,13 @@ struct Session {
     debug_display.upload(s.debug.image, false);
   }
 
+  // The samples per pixel of the current settings' own passes, as the panel
+  // counts them (0 until the first lands).
   void update_title() {
-    if (s.snap.spp == title_spp) return;
-    title_spp = s.snap.spp;
-    const std::string title = "Whisker - " + s.scene_label + " - " +
-                              std::to_string(s.snap.spp) + " spp";
+    const std::uint64_t spp = s.snap.generation == s.generation ? s.snap.spp : 0;
+    if (spp == title_spp) return;
+    title_spp = spp;
+    const std::string title = "Whisker - " + s.scene_label + " - " + std::to_string(spp) + " spp";
     glfwSetWindowTitle(window, title.c_str());
   }
 
@@ -231,7 +249,8 @@ struct Session {
     } else if (held && s.compare == kCompareHeld) {
       held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
     } else {
-      display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+      const Snapshot& live = s.display.mode == 1 ? s.snap : s.shown.image;
+      display.draw(rect, f.fb_h, float(live.spp), s.display);
       if (held && s.compare == kCompareWipe)
         held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
     }
@@ -360,9 +379,12 @@ int run_viewer(const ViewerOptions& opt) {
 
   ProgressiveRenderer renderer(opt.threads);
   s.threads = renderer.threads();
-  // A coarse preview (1/16 of a pass) shows an edit at once; it is never
-  // accumulated, so scripted runs and saves skip it.
+  // Quick passes show an edit at once (viewer/blend.h); they never enter the
+  // accumulation, so scripted runs compare with headless renders as before.
   renderer.set_preview(true);
+  // A deterministic estimate is exact after one pass; a scripted run renders
+  // its --frames passes, as the headless mode with --frames does.
+  renderer.set_stop_when_exact(opt.frames <= 0);
   renderer.set_low_priority(true);  // the UI thread shares the two cores
   s.generation = renderer.set_scene(s.applied);
   renderer.start();

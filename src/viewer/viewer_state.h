@@ -7,6 +7,7 @@
 
 #include "render/progressive.h"
 #include "scene/scene.h"
+#include "viewer/blend.h"
 #include "viewer/debug_views.h"
 #include "viewer/display.h"
 #include "viewer/history.h"
@@ -58,7 +59,9 @@ struct ViewerState {
   std::uint64_t generation = 0;  // last generation asked for
   double last_change = 0.0;      // glfwGetTime() of the last edit
 
-  Snapshot snap;
+  Snapshot snap;   // the generation's own passes (what headless writes)
+  Snapshot quick;  // the quick passes after an edit (ProgressiveRenderer::set_preview)
+  Shown shown;     // what the window draws and S saves: snap, quick, or both combined
   ProgressiveRenderer::PassProgress progress;  // the pass in flight
   double rse = 0.0;  // relative standard error of snap
   std::size_t triangles = 0;
