@@ -141,6 +141,15 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                         "Viewer script: apply --edit-light after K passes"),
          0, 1 << 24);
   app.add_option("--edit-light", o.edit_light, "Viewer script: new light position x,y,z");
+  app.add_option("--edit-orbit", o.edit_orbit,
+                 "Viewer script: after --edit-after K passes, orbit the camera by dx,dy radians "
+                 "(as a left drag)");
+  app.add_option("--edit-toggle", o.edit_toggle,
+                 "Viewer script: after --edit-after K passes, switch indirect, aa or fresnel")
+      ->check(CLI::IsMember({"indirect", "aa", "fresnel"}));
+  app.add_option("--edit-log", o.edit_log,
+                 "Viewer: write a line per drawn frame and per edit (times, generations, "
+                 "samples) to this file, for bench/viewer_latency.sh");
   app.add_flag("--quiet", o.quiet, "No progress line");
   number_in(app.add_option("--progress", o.progress_every,
                            "Headless, stderr not a terminal (a pipe, a log): a progress line "

@@ -21,7 +21,9 @@ void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& 
   if (keys.redo) req.redo = true;
 }
 
-void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
+void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale, const World* world,
+                         bool* stopped) {
+  const Camera before = cam;
   for (int b = 0; b < 3; ++b) {
     if (in.clicked[b]) dragging_[b] = !in.imgui_wants_mouse;
     if (!in.down[b]) dragging_[b] = false;
@@ -31,6 +33,8 @@ void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
   if (moved && dragging_[0]) orbit(cam, -in.dx * 0.008f, -in.dy * 0.008f);
   if (moved && (dragging_[1] || dragging_[2])) pan(cam, in.dx / image_scale, in.dy / image_scale);
   if (in.wheel != 0.0f && !in.imgui_wants_mouse) dolly(cam, std::pow(0.9f, in.wheel));
+  const bool cut = world && cam.position != before.position && stop_at_surfaces(before, cam, *world);
+  if (stopped) *stopped = cut;
 }
 
 KeyPresses read_keys() {

@@ -8,6 +8,8 @@
 
 namespace whisker {
 
+class World;
+
 // Shortcut keys pressed this frame (not repeats).
 struct KeyPresses {
   bool space = false;   // pause / resume
@@ -39,7 +41,10 @@ class MouseCamera {
  public:
   // `image_scale`: image pixels per window unit, so a pan drags the scene
   // with the mouse.
-  void update(Camera& cam, const MouseInput& in, float image_scale);
+  // With `world`, no move takes the eye into or through a surface
+  // (stop_at_surfaces); `stopped` tells whether one was cut short.
+  void update(Camera& cam, const MouseInput& in, float image_scale, const World* world = nullptr,
+              bool* stopped = nullptr);
 
  private:
   bool dragging_[3] = {false, false, false};

@@ -110,7 +110,7 @@ void progress_lines(const ViewerState& s) {
 
 // The relative error against passes, log scale, with its axes.
 void error_plot(const ViewerState& s) {
-  const float h = 74.0f * ImGui::GetIO().FontGlobalScale;
+  const float h = 56.0f * ImGui::GetIO().FontGlobalScale;
   const ImVec2 size(ImGui::GetContentRegionAvail().x, h);
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton("##errorplot", size);

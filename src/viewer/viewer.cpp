@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -21,6 +22,8 @@
 #include "render/progressive.h"
 #include "render/stats_io.h"
 #include "scene/scene_io.h"
+#include "scene/world.h"
+#include "viewer/camera_control.h"
 #include "viewer/controller.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
@@ -121,6 +124,11 @@ struct Session {
   std::uint64_t title_spp = ~0ull;
   std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
   Scene debug_scene{};                   // what s.debug shows
+  // The scene's geometry for the camera's collision rays (its BVH reused
+  // while the meshes stay), and the scene it was built from.
+  std::unique_ptr<World> room{};
+  Scene room_scene{};
+  Camera room_checked_camera{};
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -199,7 +207,14 @@ struct Session {
     }
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
-    mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);
+    update_room();
+    bool stopped = false;
+    mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f,
+                 room.get(), &stopped);
+    if (stopped) {
+      s.message = "the camera stopped at a surface";
+      s.message_is_error = false;
+    }
 
     ctl.carry_out(req, t0);
     if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -215,6 +230,28 @@ struct Session {
     // Switching to the noise view needs the sums of squares on the GPU.
     if ((s.display.mode == 1) != uploaded_mode) upload_image();
     return rect;
+  }
+
+  // The World for the camera's rays follows the edited scene's geometry; the
+  // eye's place is checked whenever the applied camera changes.
+  void update_room() {
+    Scene geometry = s.edited;
+    geometry.camera = room_scene.camera;
+    geometry.light = room_scene.light;
+    geometry.settings = room_scene.settings;
+    if (!room || classify_change(room_scene, geometry) != SceneChange::None) {
+      room = std::make_unique<World>(s.edited, room.get());
+      room_scene = s.edited;
+      room_checked_camera = Camera{};
+      room_checked_camera.width = -1;  // checked again below
+    }
+    const Camera& c = s.applied.camera;
+    if (c.position != room_checked_camera.position || c.look_at != room_checked_camera.look_at ||
+        c.width != room_checked_camera.width) {
+      room_checked_camera = c;
+      std::string why;
+      s.eye_outside = eye_inside_room(c, *room, &why) ? std::string() : why;
+    }
   }
 
   // A debug view follows the applied scene (camera moves included).
@@ -272,6 +309,29 @@ struct Session {
     }
   }
 
+  // The event log (--edit-log): a line when the settings change (an edit,
+  // scripted or by hand, t = the frame that made it) and a line per drawn
+  // frame after its swap: what the frame shows of which generation.
+  std::FILE* log = nullptr;
+  std::uint64_t logged_generation = 0;
+  void log_frame(double t0, double t_shown) {
+    if (!log) return;
+    if (s.generation != logged_generation) {
+      std::fprintf(log, "edit t=%.6f gen=%llu\n", t0, (unsigned long long)s.generation);
+      logged_generation = s.generation;
+    }
+    const bool own_current = s.snap.generation == s.generation;
+    std::fprintf(log,
+                 "frame t=%.6f gen=%llu shown_gen=%llu shown_quick=%llu shown_own=%llu own_gen=%llu "
+                 "own_spp=%llu own_passes=%llu rse=%.6g\n",
+                 t_shown, (unsigned long long)s.generation,
+                 (unsigned long long)s.shown.image.generation,
+                 (unsigned long long)s.shown.quick_spp, (unsigned long long)s.shown.own_spp,
+                 (unsigned long long)s.snap.generation, (unsigned long long)s.snap.spp,
+                 (unsigned long long)s.snap.passes, own_current ? s.rse : std::nan(""));
+    std::fflush(log);
+  }
+
   // Runs until the window closes or the scripted run is done; the exit code.
   int run() {
     int exit_code = 0;
@@ -289,14 +349,16 @@ struct Session {
       const PixelRect rect = panel_and_input(f, t0);
       // Without --screenshot the window stays open after --frames passes
       // (the target stops the render there).
-      const bool finish = !opt.screenshot_path.empty() && script.finished(s);
+      const bool finish =
+          (!opt.screenshot_path.empty() || !opt.event_log.empty()) && script.finished(s);
       update_title();
       render(f, rect);
 
       const double t_work = glfwGetTime();
-      if (finish && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
+      if (finish && !opt.screenshot_path.empty() && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
         exit_code = 2;  // an output that cannot be written, as headless
       glfwSwapBuffers(window);
+      log_frame(t0, glfwGetTime());
       record_timing(t0, t_work, glfwGetTime(), finish);
       if (finish) break;
     }
@@ -381,7 +443,9 @@ int run_viewer(const ViewerOptions& opt) {
   s.threads = renderer.threads();
   // Quick passes show an edit at once (viewer/blend.h); they never enter the
   // accumulation, so scripted runs compare with headless renders as before.
-  renderer.set_preview(true);
+  // A scripted screenshot compares with the headless render after its
+  // passes, so it shows the own passes alone.
+  renderer.set_preview(opt.screenshot_path.empty());
   // A deterministic estimate is exact after one pass; a scripted run renders
   // its --frames passes, as the headless mode with --frames does.
   renderer.set_stop_when_exact(opt.frames <= 0);
@@ -392,8 +456,17 @@ int run_viewer(const ViewerOptions& opt) {
 
   Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
                   kPanelWidth * imgui.ui_scale()};
+  if (!opt.event_log.empty()) {
+    session.log = std::fopen(opt.event_log.c_str(), "w");
+    if (!session.log) {
+      std::fprintf(stderr, "whisker: --edit-log %s: cannot write it\n", opt.event_log.c_str());
+      renderer.stop();
+      return 2;
+    }
+  }
   const int exit_code = session.run();
   session.print_summary();
+  if (session.log) std::fclose(session.log);
   renderer.stop();
   return exit_code;
 }

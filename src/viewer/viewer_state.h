@@ -78,6 +78,9 @@ struct ViewerState {
   std::string pending_mesh;  // with this OBJ for its meshes
 
   DebugImage debug;       // the debug view on screen (display.mode >= 2)
+  // Not empty when the applied camera's eye is outside the room or inside an
+  // object (eye_inside_room): the panel says so and offers Reset camera.
+  std::string eye_outside;
 
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
