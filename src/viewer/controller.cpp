@@ -121,6 +121,8 @@ void Controller::save_scene() {
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       return std::fclose(f) == 0 && ok;
     });
+    s.saved_scene = s.applied;
+    s.have_saved_scene = true;
     s.message = "saved the scene as " + path;
     if (stem != wanted) s.message += " (" + wanted + ".json was taken)";
     s.message_is_error = false;
@@ -134,7 +136,10 @@ void Controller::save_scene() {
 
 void Controller::load(const std::string& name_or_path, double now, bool confirmed,
                       const std::string& mesh) {
-  const bool ask = !confirmed && s.history.can_undo();
+  // Edits that are saved in a scene file are not lost by loading another.
+  const bool saved = s.have_saved_scene && classify_change(s.saved_scene, s.applied) == SceneChange::None &&
+                     classify_change(s.applied, s.edited) == SceneChange::None;
+  const bool ask = !confirmed && s.history.can_undo() && !saved;
   s.pending_load.clear();
   s.pending_mesh.clear();
   try {
@@ -158,6 +163,7 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
     s.history.clear();
+    s.have_saved_scene = false;
     s.message = "loaded " + path.string();
     s.message_is_error = false;
   } catch (const std::exception& e) {
@@ -187,8 +193,10 @@ ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool displ
 // The image the window shows, as a mean per pixel (spp 1): the live one, the
 // held one, or in a wipe the held one's columns left of the line (the same
 // whole columns as Display::draw_columns) and the live one's right of it.
+static const Snapshot& live_image(const ViewerState& s);
+
 Snapshot shown_means(const ViewerState& s) {
-  const Snapshot& live = s.shown.image;
+  const Snapshot& live = live_image(s);
   const bool held = s.held.spp > 0 && s.held.width == live.width && s.held.height == live.height;
   const auto means = [](const Snapshot& sn) {
     Snapshot m = sn;
@@ -215,9 +223,15 @@ Snapshot shown_means(const ViewerState& s) {
   return out;
 }
 
+// The live image: what the window shows (viewer/blend.h) once that holds
+// the generation's own passes, else the own passes alone.
+static const Snapshot& live_image(const ViewerState& s) {
+  return s.shown.image.spp > 0 && s.shown.own_spp > 0 ? s.shown.image : s.snap;
+}
+
 void Controller::save() {
   const Snapshot& own = s.snap;
-  if (own.spp == 0 || own.preview || own.generation != s.generation) {
+  if (own.spp == 0 || own.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
     s.message = "nothing to save yet: the first full pass is not in";
     s.message_is_error = true;
     return;
@@ -243,7 +257,7 @@ void Controller::save() {
     write_png_rgb8(base + ".png", shown.width, shown.height, rgb);
     // The float file is the live render's mean (with quick samples combined
     // while the window shows them, viewer/blend.h).
-    const Image img = mean_image(s.shown.image.spp ? s.shown.image : own);
+    const Image img = mean_image(live_image(s));
     const bool display_units = s.save_display_units;
     write_float_image(base + float_ext, display_units ? display_referred(img) : img,
                       render_record(s.applied, own, display_units));
@@ -271,12 +285,12 @@ void Controller::save() {
 }
 
 void Controller::hold() {
-  if (s.snap.spp == 0 || s.snap.preview || s.snap.generation != s.generation) {
+  if (s.snap.spp == 0 || s.snap.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
     s.message = "nothing to hold yet";
     s.message_is_error = true;
     return;
   }
-  s.held = s.shown.image;
+  s.held = live_image(s);
   const RenderSettings& r = s.applied.settings;
   s.held_note = std::to_string(s.snap.spp) + " spp, Fresnel " + (r.fresnel ? "on" : "off") +
                 ", indirect " + (r.indirect ? "on" : "off");

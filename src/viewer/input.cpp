@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "viewer/camera_control.h"
+#include "viewer/window.h"
 
 namespace whisker {
 
@@ -37,23 +38,27 @@ void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale, c
   if (stopped) *stopped = cut;
 }
 
-KeyPresses read_keys() {
+KeyPresses keys_of(const std::vector<KeyPress>& presses) {
   KeyPresses k;
-  k.space = ImGui::IsKeyPressed(GLFW_KEY_SPACE, false);
-  k.r = ImGui::IsKeyPressed(GLFW_KEY_R, false);
-  k.s = ImGui::IsKeyPressed(GLFW_KEY_S, false);
-  k.c = ImGui::IsKeyPressed(GLFW_KEY_C, false);
-  k.escape = ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false);
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.KeyCtrl) {
-    const bool z = ImGui::IsKeyPressed(GLFW_KEY_Z, true);
-    k.undo = z && !io.KeyShift;
-    k.redo = (z && io.KeyShift) || ImGui::IsKeyPressed(GLFW_KEY_Y, true);
-    // Ctrl+letter is never the letter's own shortcut.
-    k.r = k.s = k.c = false;
+  for (const KeyPress& p : presses) {
+    const bool ctrl = (p.mods & GLFW_MOD_CONTROL) != 0, shift = (p.mods & GLFW_MOD_SHIFT) != 0;
+    if (ctrl) {
+      // Ctrl+letter is never the letter's own shortcut; undo and redo repeat.
+      if (p.key == GLFW_KEY_Z) (shift ? k.redo : k.undo) = true;
+      if (p.key == GLFW_KEY_Y) k.redo = true;
+      continue;
+    }
+    if (p.repeat) continue;
+    if (p.key == GLFW_KEY_SPACE) k.space = true;
+    if (p.key == GLFW_KEY_R) k.r = true;
+    if (p.key == GLFW_KEY_S) k.s = true;
+    if (p.key == GLFW_KEY_C) k.c = true;
+    if (p.key == GLFW_KEY_ESCAPE) k.escape = true;
   }
   return k;
 }
+
+KeyPresses read_keys() { return keys_of(take_key_presses()); }
 
 MouseInput read_mouse() {
   const ImGuiIO& io = ImGui::GetIO();

@@ -5,6 +5,7 @@
 
 #include "scene/scene.h"
 #include "viewer/viewer_state.h"
+#include "viewer/window.h"
 
 namespace whisker {
 
@@ -50,6 +51,9 @@ class MouseCamera {
   bool dragging_[3] = {false, false, false};
 };
 
+// The shortcuts among GLFW key presses (window.h: take_key_presses).
+KeyPresses keys_of(const std::vector<KeyPress>& presses);
+// This frame's shortcuts: every press since the last frame, none lost.
 KeyPresses read_keys();
 MouseInput read_mouse();
 // True while ImGui takes keyboard input.

@@ -75,6 +75,10 @@ struct ViewerState {
   EditHistory history;
   std::vector<Camera> bookmarks;
   std::string pending_load;  // a load waiting for "discard the edits?"
+  // The scene as last written by Save scene: its edits are kept, so loading
+  // another scene asks nothing while the applied scene is still this one.
+  Scene saved_scene;
+  bool have_saved_scene = false;
   std::string pending_mesh;  // with this OBJ for its meshes
 
   DebugImage debug;       // the debug view on screen (display.mode >= 2)
