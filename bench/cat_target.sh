@@ -1,31 +1,46 @@
 #!/usr/bin/env bash
-# The cat target, measured directly at full size (512x512, fig 8 settings) and
-# side by side: how long Whisker needs to reach the error that the report's own
-# program has at 1024 samples per pixel, against how long that program takes.
-# Both programs run in this script, interleaved (report, Whisker, report, ...).
+# The cat target at every scale, measured side by side at full size (512x512,
+# fig 8 settings): how long Whisker needs to reach the error that the report's
+# own program has at 1024 samples per pixel, at pixel scale and after
+# box-filtering both images by 2, 4, 8 and 16 px, against how long that
+# program takes. Both programs run in this script, interleaved (report,
+# Whisker's estimators, report, ...). The headline is the worst scale: an
+# estimator that moves error from fine grain into blotches gains at pixel
+# scale and loses at the blotches' scale, and a person sees the blotches.
 #
-#   bench/cat_target.sh            # ~4 minutes on the 2-core machine
+#   bench/cat_target.sh            # ~8 minutes on the 2-core machine; quiet machine please
 #
 # Error without a reference image: two renders with independent seeds a and
 # b of an unbiased estimator have E|a - b|^2 = MSE_a + MSE_b, so the MSE of
-# one render is half the MSE between the two (whisker-compare, same white
-# point as the convergence study).
+# one render is half the MSE between the two, at each scale (whisker-compare
+# box-filters both images by k before the MSE, with the convergence study's
+# white point).
 #
-# 1. The report's program (built from its source, its two bugs mended so that it
-#    converges to Whisker's image; bench/report_program.sh) at REPORT_SPP with
-#    two seeds: plain Monte Carlo, so its MSE at 1024 spp is
-#    MSE(REPORT_SPP) * REPORT_SPP / 1024. Its time for 1024 spp: measured
-#    directly with REPORT_FULL=1 (~10 minutes), otherwise from its times at
-#    REPORT_SMALL and REPORT_SPP samples, t(1024) = t(S) + (1024 - S) x the
-#    time per sample between the two (the load and BVH build counted once).
-# 2. Whisker's defaults (or BEST_FLAGS) at each count in BEST_SPP, two seeds:
-#    time (whole process, wall) and MSE.
-# 3. The first count whose MSE is at or below the target, and its time
-#    against the report program's.
+# 1. The report's program (built from its source, its two bugs mended so that
+#    it converges to Whisker's image; bench/report_program.sh) at REPORT_SPP
+#    with two seeds. Plain Monte Carlo with independent pixels, so its MSE at
+#    1024 spp is MSE(REPORT_SPP) * REPORT_SPP / 1024 at every scale. Its time
+#    for 1024 spp: measured directly with REPORT_FULL=1 (~8 minutes),
+#    otherwise from its times at REPORT_SMALL and REPORT_SPP samples,
+#    t(1024) = t(S) + (1024 - S) x the time per sample between the two.
+# 2. Each of Whisker's estimators in CONFIGS at each of its sample counts,
+#    two seeds: time (whole process, wall, mean of the seeds) and MSE per scale.
+# 3. Per estimator and scale, the samples per pixel that reach the target
+#    (log-log interpolation of MSE against spp between the measured counts,
+#    extrapolated along the measured slope, between -0.5 and -2) and their
+#    time (the line through the measured times), against the report program's.
+#
+# CONFIGS: estimators separated by ';', each "name|whisker flags|spp counts".
+# The first is the defaults (the scene's settings); the one named no-reuse is
+# the estimator without path reuse. The script exits 1 when the defaults
+# reach the target later than no-reuse at any scale by more than TOLERANCE
+# (a fraction, default 0.1: both are timed on a shared machine); when the
+# two render the same images (the defaults do not reuse paths) it says so.
 #
 # Knobs: WHISKER_BUILD, REPORT_SPP (16), REPORT_SMALL (2), REPORT_FULL (0),
-# REPORT_PROGRAM_DIR, BEST_SPP ("6 7 8 10 16"), BEST_FLAGS (""), SEEDS ("101 202":
-# exactly two), THREADS (2), CAT_OUT (output dir, default $BUILD/cat-target).
+# REPORT_PROGRAM_DIR, CONFIGS, SEEDS ("101 202": exactly two), THREADS (2),
+# SCALES ("1 2 4 8 16"), TOLERANCE, CAT_OUT (output dir, default
+# $BUILD/cat-target; every image and JSON stays there).
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -34,10 +49,11 @@ BUILD=${WHISKER_BUILD:-$ROOT/build}
 REPORT_SPP=${REPORT_SPP:-16}
 REPORT_SMALL=${REPORT_SMALL:-2}
 REPORT_FULL=${REPORT_FULL:-0}
-BEST_SPP=${BEST_SPP:-"6 7 8 10 16"}
-read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"
+CONFIGS=${CONFIGS:-"defaults||16 32;no-reuse|--reuse 1|16 32;reuse-4|--reuse 4 --split 4,2|8 32"}
 read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
 THREADS=${THREADS:-2}
+SCALES=${SCALES:-"1 2 4 8 16"}
+TOLERANCE=${TOLERANCE:-0.1}
 OUT=${CAT_OUT:-$BUILD/cat-target}
 
 cmake --build "$BUILD" -j 2 --target whisker whisker-compare >/dev/null
@@ -49,71 +65,90 @@ WHISKER=$OUT/bin/whisker
 COMPARE=$OUT/bin/whisker-compare
 report_program_build "$OUT"
 
+seconds_since() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.3f}')" "$1" "$(date +%s.%N)"; }
+
 # render TAG SPP SEED FLAGS... -> prints the wall seconds of the whole process
 render() {
-  local tag=$1 spp=$2 seed=$3
+  local tag=$1 spp=$2 seed=$3 t0
   shift 3
-  local t0 t1
   t0=$(date +%s.%N)
+  # shellcheck disable=SC2068
   "$WHISKER" --headless --scene cat --frames 1 --spp "$spp" --seed "$seed" \
-    --threads "$THREADS" --quiet --out-float "$OUT/$tag-$seed.pfm" "$@" >/dev/null
-  t1=$(date +%s.%N)
-  python3 -c "print(f'{$t1 - $t0:.3f}')"
+    --threads "$THREADS" --quiet --out-float "$OUT/$tag-$seed.pfm" $@ >/dev/null
+  seconds_since "$t0"
 }
-
-# mse TAG -> half the MSE between the two seeds' images
-mse() {
-  "$COMPARE" "$OUT/$1-$SEED_A.pfm" "$OUT/$1-$SEED_B.pfm" --json "$OUT/$1.json" >/dev/null
-  python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['mse'] / 2)" "$OUT/$1.json"
-}
-mean2() { python3 -c "print(($1 + $2) / 2)"; }
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 
-# Interleaved: for each seed, the report's program, then Whisker at every count.
-declare -A WT RT RS
+IFS=';' read -r -a CONFIG_LIST <<<"$CONFIGS"
+TIMES=$OUT/times.txt
+: >"$TIMES"
+# Interleaved: for each seed, the report's program, then every estimator at
+# every count, then the report's program at its small count.
 for seed in "$SEED_A" "$SEED_B"; do
-  RT[$seed]=$(report_program_run "$REPORT_CAT" "$REPORT_SPP" "$seed" "$OUT/report-$seed.pfm")
-  for spp in $BEST_SPP; do
-    WT[$spp-$seed]=$(render "best-$spp" "$spp" "$seed" "${BEST_FLAGS[@]}")
+  echo "report $REPORT_SPP $seed $(report_program_run "$REPORT_CAT" "$REPORT_SPP" "$seed" "$OUT/report-$REPORT_SPP-$seed.pfm")" >>"$TIMES"
+  for config in "${CONFIG_LIST[@]}"; do
+    IFS='|' read -r name flags counts <<<"$config"
+    for spp in $counts; do
+      echo "$name $spp $seed $(render "$name-$spp" "$spp" "$seed" "$flags")" >>"$TIMES"
+    done
   done
-  RS[$seed]=$(report_program_run "$REPORT_CAT" "$REPORT_SMALL" "$seed" "$OUT/report-small-$seed.pfm")
+  echo "report $REPORT_SMALL $seed $(report_program_run "$REPORT_CAT" "$REPORT_SMALL" "$seed" "$OUT/report-$REPORT_SMALL-$seed.pfm")" >>"$TIMES"
 done
-rmse=$(mse report)
-target=$(python3 -c "print($rmse * $REPORT_SPP / 1024)")
-t_spp=$(mean2 "${RT[$SEED_A]}" "${RT[$SEED_B]}")
-t_small=$(mean2 "${RS[$SEED_A]}" "${RS[$SEED_B]}")
 if [ "$REPORT_FULL" = 1 ]; then
-  report_1024=$(report_program_run "$REPORT_CAT" 1024 "$SEED_A" "$OUT/report-1024.pfm")
-  how="measured at 1024 spp"
-else
-  report_1024=$(python3 -c "print($t_spp + (1024 - $REPORT_SPP) * ($t_spp - $t_small) / ($REPORT_SPP - $REPORT_SMALL))")
-  how="from its times at $REPORT_SMALL spp ($t_small s) and $REPORT_SPP spp ($t_spp s)"
+  echo "report 1024 $SEED_A $(report_program_run "$REPORT_CAT" 1024 "$SEED_A" "$OUT/report-1024-$SEED_A.pfm")" >>"$TIMES"
 fi
-echo "report's program at $REPORT_SPP spp: MSE $rmse; its 1024-spp time $report_1024 s ($how)"
-echo "target: the report program's MSE at 1024 spp = $target"
-echo
-echo "| spp | seconds (wall, mean of 2) | MSE of one image | reaches target | report program's 1024-spp time / seconds |"
-echo "|---|---|---|---|---|"
-rows=()
-for spp in $BEST_SPP; do
-  m=$(mse "best-$spp")
-  w=$(mean2 "${WT[$spp-$SEED_A]}" "${WT[$spp-$SEED_B]}")
-  rows+=("$spp $w $m")
-  python3 -c "
-s, w, m, t, r = $spp, $w, $m, $target, $report_1024
-print(f'| {s} | {w:.2f} | {m:.3e} | {\"yes\" if m <= t else \"no\"} | {r / w:.1f}x |')"
+
+# The MSE of one image, per scale, for every (estimator, count).
+scales_csv=$(tr ' ' ',' <<<"$SCALES")
+"$COMPARE" "$OUT/report-$REPORT_SPP-$SEED_A.pfm" "$OUT/report-$REPORT_SPP-$SEED_B.pfm" \
+  --scales "$scales_csv" --json "$OUT/report-$REPORT_SPP.json" >/dev/null
+for config in "${CONFIG_LIST[@]}"; do
+  IFS='|' read -r name flags counts <<<"$config"
+  for spp in $counts; do
+    "$COMPARE" "$OUT/$name-$spp-$SEED_A.pfm" "$OUT/$name-$spp-$SEED_B.pfm" \
+      --scales "$scales_csv" --json "$OUT/$name-$spp.json" >/dev/null
+  done
 done
-echo
-printf '%s\n' "${rows[@]}" | python3 -c "
-import sys
-t, r = $target, $report_1024
-rows = [tuple(map(float, l.split())) for l in sys.stdin if l.strip()]
-ok = [x for x in rows if x[2] <= t]
-if ok:
-    s, w, m = min(ok, key=lambda x: x[1])
-    print(f'first count at or below the target: {int(s)} spp, {w:.2f} s -> {r / w:.1f}x less than the report program ({r:.0f} s; 100x needs <= {r / 100:.1f} s)')
-else:
-    print('no measured count reaches the target')
-"
+# Whether the defaults and no-reuse render the same images (same estimator).
+same=0
+defaults_name=$(IFS='|' read -r n _ <<<"${CONFIG_LIST[0]}"; echo "$n")
+for config in "${CONFIG_LIST[@]}"; do
+  IFS='|' read -r name flags counts <<<"$config"
+  [ "$name" = no-reuse ] || continue
+  first=${counts%% *}
+  if [ -f "$OUT/$defaults_name-$first-$SEED_A.pfm" ] &&
+     cmp -s "$OUT/$defaults_name-$first-$SEED_A.pfm" "$OUT/no-reuse-$first-$SEED_A.pfm"; then
+    same=1
+  fi
+done
+
+status=0
+python3 "$ROOT/bench/time_to_error.py" "$OUT" "$TIMES" "$CONFIGS" "$SCALES" \
+  "$REPORT_SPP" "$REPORT_SMALL" "$REPORT_FULL" "$TOLERANCE" "$same" || status=$?
+
+# The noise pictures and the time-normalised error spectra, each estimator at
+# its largest count and the report's program at REPORT_SPP (Debian's
+# python3-numpy, python3-pil and gnuplot; installed when missing and allowed).
+spectrum_tools() {
+  /usr/bin/python3 -c 'import numpy, PIL' 2>/dev/null && command -v gnuplot >/dev/null && return 0
+  local sudo=()
+  [ "$(id -u)" -ne 0 ] && { command -v sudo >/dev/null || return 1; sudo=(sudo -n); }
+  DEBIAN_FRONTEND=noninteractive "${sudo[@]}" apt-get install -y -q --no-install-recommends \
+    python3-numpy python3-pil gnuplot-nox >/dev/null 2>&1
+}
+if spectrum_tools; then
+  mean_time() { awk -v n="$1" -v s="$2" '$1 == n && $2 == s {t += $4; c++} END {printf "%.3f", t / c}' "$TIMES"; }
+  curves=("report:$OUT/report-$REPORT_SPP-$SEED_A.pfm:$OUT/report-$REPORT_SPP-$SEED_B.pfm:$(mean_time report "$REPORT_SPP")")
+  for config in "${CONFIG_LIST[@]}"; do
+    IFS='|' read -r name flags counts <<<"$config"
+    last=${counts##* }
+    curves+=("$name:$OUT/$name-$last-$SEED_A.pfm:$OUT/$name-$last-$SEED_B.pfm:$(mean_time "$name" "$last")")
+  done
+  /usr/bin/python3 "$ROOT/bench/error_spectrum.py" "$OUT/cat" "${curves[@]}"
+  echo "noise pictures and spectrum: $OUT/cat-noise-*.png, $OUT/cat-spectrum.png"
+else
+  echo "spectrum skipped: needs python3-numpy, python3-pil and gnuplot (Debian packages)"
+fi
+exit "$status"

@@ -226,10 +226,10 @@ TEST(Progressive, QuickPassesAreNeverAccumulated) {
 
 TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
   PixelSum p;
-  p.add(vec3(1.0f, 2.0f, 4.0f));
-  p.add(vec3(NAN, 0.0f, 0.0f));
-  p.add(vec3(0.0f, INFINITY, 0.0f));
-  p.add(vec3(1.0f, 0.0f, 0.0f));
+  p.add(vec3(1.0f, 2.0f, 4.0f), 0);
+  p.add(vec3(NAN, 0.0f, 0.0f), 1);
+  p.add(vec3(0.0f, INFINITY, 0.0f), 2);
+  p.add(vec3(1.0f, 0.0f, 0.0f), 3);
   EXPECT_EQ(p.dropped, 2u);
   EXPECT_EQ(p.sum, glm::dvec3(2.0, 2.0, 4.0));
   const double y1 = 0.2126f * 1.0f + 0.7152f * 2.0f + 0.0722f * 4.0f, y2 = 0.2126f;

@@ -35,6 +35,11 @@ struct Snapshot {
   // square doubles the exponent: float overflows for radiance near 1e19
   // and underflows below 1e-19 (light intensities of 1e30 and 1e-30).
   std::vector<double> sum_sq;
+  // Per-pixel luminance sum of the samples with an odd index: with `sum`,
+  // two independent half images, whose difference measures the noise at any
+  // scale, correlated pixels included (empty when not known: a resumed part).
+  std::vector<double> odd_sum;
+  std::uint64_t first_sample = 0;  // index of the first sample in `sum`
   std::uint64_t spp = 0;      // samples per pixel in `sum`
   std::uint64_t generation = 0;
   std::uint64_t version = 0;  // bumps with every published pass
@@ -58,9 +63,25 @@ struct Snapshot {
     return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
   }
   // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
-  // sum_px mean_px, from the luminance sums of squares.
+  // sum_px mean_px, from the luminance sums of squares; per-pixel variances,
+  // so it reads low when pixels share their errors (path reuse's blocks).
+  double pixel_standard_error() const;
+  // The same figure after box-filtering by k (k x k blocks), from the two
+  // half images (Snapshot::odd_sum), times k: for independent pixels it
+  // equals the pixel figure at every k; larger where errors are correlated
+  // across pixels, smaller for blue noise. NaN when unknown (no halves, or
+  // fewer than 2 samples).
+  double scale_standard_error(int k) const;
+  // The noise figure the stats and the viewer show: the largest of the
+  // pixel figure and the scale figures at 2, 4, 8 and 16 px, so it never
+  // reads low for correlated pixels (issue 27; Celarek et al., "Quantifying
+  // the Error of Light Transport Algorithms", EGSR 2019, on error at
+  // several scales).
   double relative_standard_error() const;
 };
+
+// The scales the noise figure looks at (box filter sides, pixels).
+inline constexpr int kNoiseScales[] = {2, 4, 8, 16};
 
 // The mean radiance image of a snapshot.
 Image mean_image(const Snapshot& s);
@@ -70,9 +91,10 @@ Image mean_image(const Snapshot& s);
 struct PixelSum {
   glm::dvec3 sum{0.0};
   double sum_sq = 0.0;
+  double odd_sum = 0.0;       // luminance of the odd-indexed samples
   std::uint64_t dropped = 0;  // non-finite samples
 
-  void add(const glm::vec3& c) {
+  void add(const glm::vec3& c, std::uint64_t sample) {
     if (!finite_sample(c)) {
       ++dropped;  // dropped and counted, never accumulated
       return;
@@ -80,6 +102,7 @@ struct PixelSum {
     sum += glm::dvec3(c);
     const double y = luminance(c);
     sum_sq += y * y;
+    if (sample & 1) odd_sum += y;
   }
 };
 
@@ -97,6 +120,7 @@ class Film {
     a[1] += p.sum.y;
     a[2] += p.sum.z;
     acc_sq_[pixel] += p.sum_sq;
+    acc_odd_[pixel] += p.odd_sum;
   }
   // The preview's pixels [x0, x1) x [y0, y1) show c (black if not finite).
   void fill_preview(int x0, int y0, int x1, int y1, glm::vec3 c);
@@ -106,12 +130,15 @@ class Film {
   // Copies the double sums as they are into s.exact_sum and s.exact_sum_sq.
   void publish_exact(Snapshot& s) const;
   // Starts from these sums (a resumed render); sizes must match the film's.
+  // The half images are then unknown: the scale figures say so.
   void load(const std::vector<double>& sum, const std::vector<double>& sum_sq);
 
  private:
   int width_ = 0, height_ = 0;
   std::vector<double> acc_;     // RGB sums, double so millions of samples keep their digits
   std::vector<double> acc_sq_;  // luminance sums of squares
+  std::vector<double> acc_odd_; // luminance sums of the odd-indexed samples
+  bool halves_known_ = true;    // false once loaded from a part
   std::vector<float> preview_;  // the coarse preview pass's image
 };
 

@@ -377,7 +377,7 @@ std::uint64_t ProgressiveRenderer::run_blocks(int i0, int i1, int j0, int j1, Pa
           Sampler sampler(scene.settings.sampler, pixel, sample, scene.settings.seed);
           out[0] = sample_pixel(job.world, scene, *job.cam, bi, bj, sampler, stats);
         }
-        for (int p = 0; p < pixels; ++p) sums[p].add(out[p]);
+        for (int p = 0; p < pixels; ++p) sums[p].add(out[p], sample);
       }
       for (int p = 0; p < pixels; ++p) {
         const int i = bi + p / cols, j = bj + p % cols;
@@ -400,6 +400,7 @@ void ProgressiveRenderer::end_pass() {
     Snapshot& q = quick_published_;
     job.quick_film.publish(q, false);
     q.spp = job.quick_spp;
+    q.first_sample = 0;
     q.generation = job.generation;
     q.version += 1;
     q.passes = job.quick_spp;
@@ -423,6 +424,7 @@ void ProgressiveRenderer::end_pass() {
   job.film.publish(s, false);
   if (publish_exact_) job.film.publish_exact(s);
   s.spp = job.spp_done;
+  s.first_sample = job.first_sample;
   s.generation = job.generation;
   s.version += 1;
   s.passes = job.passes;

@@ -1,0 +1,120 @@
+#!/usr/bin/env python3
+"""Time to the report program's 1024-spp error, per estimator and scale, from
+a run of bench/cat_target.sh (which calls it; the arguments are its knobs).
+
+    time_to_error.py OUT TIMES CONFIGS SCALES REPORT_SPP REPORT_SMALL REPORT_FULL TOLERANCE SAME
+
+OUT holds NAME-SPP.json (whisker-compare of the two seeds' images, with
+mse_by_scale); TIMES one line per process: "name spp seed seconds". The MSE of
+one image is half the MSE between the two seeds' images.
+
+Prints the table (rows: scales; columns: estimators) and the headline (the
+worst scale of each estimator); exits 1 when the first estimator (the
+defaults) reaches the target later than no-reuse at some scale by more than
+TOLERANCE, unless SAME says the two rendered the same images.
+Only the standard library.
+"""
+import json
+import math
+import statistics
+import sys
+from collections import defaultdict
+
+
+def main():
+    out, times_path, configs, scales, report_spp, report_small, report_full, tol, same = sys.argv[1:10]
+    scales = [int(k) for k in scales.split()]
+    report_spp, report_small = int(report_spp), int(report_small)
+    tol, same = float(tol), same == "1"
+    configs = [c.split("|") for c in configs.split(";") if c.strip()]
+
+    times = defaultdict(list)  # (name, spp) -> seconds of each seed
+    for line in open(times_path):
+        name, spp, _seed, secs = line.split()
+        times[(name, int(spp))].append(float(secs))
+    mean = lambda xs: sum(xs) / len(xs)
+
+    def mse(name, spp):
+        j = json.load(open(f"{out}/{name}-{spp}.json"))
+        return {k: j["mse_by_scale"][str(k)] / 2 for k in scales}
+
+    # The report's program: plain Monte Carlo, MSE proportional to 1/spp.
+    rep = mse("report", report_spp)
+    target = {k: rep[k] * report_spp / 1024 for k in scales}
+    t_spp, t_small = mean(times[("report", report_spp)]), mean(times[("report", report_small)])
+    if report_full == "1" and times.get(("report", 1024)):
+        report_1024, how = mean(times[("report", 1024)]), "measured at 1024 spp"
+    else:
+        report_1024 = t_spp + (1024 - report_spp) * (t_spp - t_small) / (report_spp - report_small)
+        how = f"from its times at {report_small} spp ({t_small:.2f} s) and {report_spp} spp ({t_spp:.2f} s)"
+    print(f"report's program: 1024 spp take {report_1024:.1f} s ({how}); target MSE per scale: "
+          + ", ".join(f"{k} px {target[k]:.3e}" for k in scales))
+    print()
+
+    results = {}  # name -> {k: (spp, seconds, ratio)}
+    for name, _flags, counts in configs:
+        counts = sorted(int(s) for s in counts.split())
+        pts = [(s, mse(name, s), mean(times[(name, s)])) for s in counts]
+        # Time against spp: the least-squares line (a start-up cost plus a
+        # cost per sample); one count: proportional.
+        if len(pts) > 1:
+            xs, ys = [p[0] for p in pts], [p[2] for p in pts]
+            mx, my = mean(xs), mean(ys)
+            b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+            a = my - b * mx
+        else:
+            a, b = 0.0, pts[0][2] / pts[0][0]
+        row = {}
+        for k in scales:
+            # log-log between the two counts nearest the target (or the
+            # ends), slope kept within [-2, -0.5].
+            if len(pts) > 1:
+                lo, hi = pts[0], pts[-1]
+                for p, q in zip(pts, pts[1:]):
+                    if q[1][k] <= target[k] <= p[1][k]:
+                        lo, hi = p, q
+                slope = math.log(hi[1][k] / lo[1][k]) / math.log(hi[0] / lo[0])
+                slope = min(-0.5, max(-2.0, slope))
+            else:
+                lo = hi = pts[0]
+                slope = -1.0
+            # anchored at the count whose MSE is nearest the target
+            ref = min((lo, hi), key=lambda p: abs(math.log(p[1][k] / target[k])))
+            need = ref[0] * (target[k] / ref[1][k]) ** (1.0 / slope)
+            secs = a + b * need
+            row[k] = (need, secs, report_1024 / secs)
+        results[name] = row
+
+    names = [c[0] for c in configs]
+    print("| box filter | " + " | ".join(f"{n} ({c[1] or 'the scene' + chr(39) + 's settings'})" for n, c in zip(names, configs)) + " |")
+    print("|---|" + "---|" * len(names))
+    for k in scales:
+        cells = []
+        for n in names:
+            need, secs, ratio = results[n][k]
+            cells.append(f"{need:.0f} spp, {secs:.2f} s, {ratio:.1f}x")
+        print(f"| {k} px | " + " | ".join(cells) + " |")
+    print()
+    worst = {}
+    for n in names:
+        k = min(scales, key=lambda s: results[n][s][2])
+        worst[n] = (k, results[n][k])
+        need, secs, ratio = results[n][k]
+        print(f"worst scale of {n}: {k} px, {need:.0f} spp in {secs:.2f} s -> {ratio:.1f}x less than "
+              f"the report program ({report_1024:.0f} s)")
+    print(f"headline (the defaults at their worst scale): {worst[names[0]][1][2]:.1f}x")
+
+    if "no-reuse" in results and names[0] != "no-reuse":
+        if same:
+            print("the defaults render the same images as no-reuse (the defaults do not reuse paths)")
+            return 0
+        lost = [k for k in scales if results[names[0]][k][1] > results["no-reuse"][k][1] * (1 + tol)]
+        if lost:
+            print(f"FAIL: the defaults reach the target later than no-reuse at {', '.join(f'{k} px' for k in lost)}")
+            return 1
+        print("the defaults reach the target no later than no-reuse at every scale")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,107 @@
+// The film's noise figures (render/film.h): the pixel figure from the sums of
+// squares, the scale figures from the two half images, and the figure the
+// stats and the viewer show, which must not read low when pixels share
+// their errors.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "render/film.h"
+
+namespace whisker {
+namespace {
+
+constexpr int kSide = 128;
+
+// A grey snapshot of two samples per pixel (indices 0 and 1), the image 1
+// plus noise of standard deviation sigma per sample: independent per pixel,
+// or one value shared by each block x block square.
+Snapshot two_sample_snapshot(double sigma, int block, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, sigma);
+  Snapshot s;
+  s.width = s.height = kSide;
+  s.spp = 2;
+  s.first_sample = 0;
+  s.sum.assign(std::size_t(kSide) * kSide * 3, 0.0f);
+  s.sum_sq.assign(std::size_t(kSide) * kSide, 0.0);
+  s.odd_sum.assign(std::size_t(kSide) * kSide, 0.0);
+  const int blocks = kSide / block;
+  std::vector<double> shared(std::size_t(blocks) * blocks * 2);
+  for (double& v : shared) v = noise(rng);
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const std::size_t p = std::size_t(y) * kSide + x, b = std::size_t(y / block) * blocks + x / block;
+      // Grey: luminance = the channel value (the weights sum to 1).
+      const double even = 1.0 + shared[2 * b], odd = 1.0 + shared[2 * b + 1];
+      for (int c = 0; c < 3; ++c) s.sum[3 * p + c] = float(even + odd);
+      s.sum_sq[p] = even * even + odd * odd;
+      s.odd_sum[p] = odd;
+    }
+  return s;
+}
+
+TEST(FilmNoise, IndependentPixelsReadTheSameAtEveryScale) {
+  const double sigma = 0.2;
+  const Snapshot s = two_sample_snapshot(sigma, 1, 7);
+  // The standard error of a 2-sample mean, relative to the mean 1.
+  const double expected = sigma / std::sqrt(2.0);
+  EXPECT_NEAR(s.pixel_standard_error(), expected, 0.05 * expected);
+  for (int k : {2, 4, 8}) EXPECT_NEAR(s.scale_standard_error(k), expected, 0.2 * expected) << k;
+}
+
+TEST(FilmNoise, BlocksSharingTheirErrorsReadHigherAtTheirScale) {
+  // 4 x 4 blocks share their noise: per pixel the same variance, but a 4 x 4
+  // box filter averages nothing away, so the scale figure is 4x the pixel's.
+  const double sigma = 0.2;
+  const Snapshot s = two_sample_snapshot(sigma, 4, 11);
+  const double pixel = s.pixel_standard_error();
+  EXPECT_NEAR(pixel, sigma / std::sqrt(2.0), 0.1 * sigma);
+  EXPECT_NEAR(s.scale_standard_error(4), 4.0 * pixel, 0.8 * pixel);
+  EXPECT_NEAR(s.scale_standard_error(8), 4.0 * pixel, 0.8 * pixel);  // 2x2 independent blocks
+  // The figure shown is the worst scale's, never the pixel one.
+  EXPECT_GT(s.relative_standard_error(), 3.0 * pixel);
+}
+
+TEST(FilmNoise, NoiseFreeImageReadsZero) {
+  const Snapshot s = two_sample_snapshot(0.0, 1, 3);
+  EXPECT_EQ(s.pixel_standard_error(), 0.0);
+  for (int k : kNoiseScales) EXPECT_EQ(s.scale_standard_error(k), 0.0) << k;
+  EXPECT_EQ(s.relative_standard_error(), 0.0);
+}
+
+TEST(FilmNoise, WithoutHalvesTheScaleFiguresAreUnknownAndThePixelFigureShows) {
+  Snapshot s = two_sample_snapshot(0.2, 4, 5);
+  s.odd_sum.clear();  // a resumed part: the halves are not known
+  for (int k : kNoiseScales) EXPECT_TRUE(std::isnan(s.scale_standard_error(k))) << k;
+  EXPECT_EQ(s.relative_standard_error(), s.pixel_standard_error());
+}
+
+TEST(FilmNoise, OddSamplesCountFromTheFirstSampleIndex) {
+  // Samples 1 and 2: sample 1 is the odd one. With first_sample 1 and the
+  // odd sums holding sample 1's values, the same figure as indices 0 and 1
+  // with the halves swapped; one sample of either parity gives nothing.
+  Snapshot s = two_sample_snapshot(0.2, 1, 9);
+  const double base = s.scale_standard_error(2);
+  Snapshot shifted = s;
+  shifted.first_sample = 1;
+  for (std::size_t p = 0; p < s.odd_sum.size(); ++p)
+    shifted.odd_sum[p] = double(s.sum[3 * p]) - s.odd_sum[p];
+  EXPECT_NEAR(shifted.scale_standard_error(2), base, 1e-6 * base);
+  s.spp = 1;
+  EXPECT_TRUE(std::isnan(s.scale_standard_error(2)));
+}
+
+TEST(FilmNoise, PixelSumsTakeOddIndicesIntoTheOddHalf) {
+  PixelSum p;
+  p.add(glm::vec3(1.0f), 4);
+  p.add(glm::vec3(2.0f), 5);
+  p.add(glm::vec3(NAN), 7);  // dropped: no half gets it
+  EXPECT_NEAR(p.odd_sum, 2.0, 1e-6);  // its luminance (weights summing to 1 in float)
+  EXPECT_DOUBLE_EQ(p.sum.x, 3.0);
+  EXPECT_EQ(p.dropped, 1u);
+}
+
+}  // namespace
+}  // namespace whisker
