@@ -1,5 +1,6 @@
 #include "viewer/input.h"
 
+#include <algorithm>
 #include <cmath>
 
 #define GLFW_INCLUDE_NONE
@@ -58,7 +59,17 @@ KeyPresses keys_of(const std::vector<KeyPress>& presses) {
   return k;
 }
 
-KeyPresses read_keys() { return keys_of(take_key_presses()); }
+KeyPresses read_keys() {
+  // One press of a key per frame: a second one (two Space presses between
+  // two frames) waits for the next frame instead of merging with the first.
+  std::vector<KeyPress> now, later;
+  for (const KeyPress& p : take_key_presses()) {
+    const bool again = std::any_of(now.begin(), now.end(), [&](const KeyPress& q) { return q.key == p.key; });
+    (again || !later.empty() ? later : now).push_back(p);
+  }
+  put_back_key_presses(later);
+  return keys_of(now);
+}
 
 MouseInput read_mouse() {
   const ImGuiIO& io = ImGui::GetIO();

@@ -57,6 +57,12 @@ std::vector<KeyPress> take_key_presses() {
   return keys;
 }
 
+void put_back_key_presses(const std::vector<KeyPress>& keys) {
+  if (keys.empty()) return;
+  g_key_presses.insert(g_key_presses.begin(), keys.begin(), keys.end());
+  mark_redraw();
+}
+
 std::string take_dropped_file() {
   std::string path;
   path.swap(g_dropped);

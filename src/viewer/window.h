@@ -82,6 +82,8 @@ struct KeyPress {
 // The key presses since the last call, in order: none is lost when a key
 // goes down and up between two frames.
 std::vector<KeyPress> take_key_presses();
+// Puts presses back in front of the queue, for the next frame.
+void put_back_key_presses(const std::vector<KeyPress>& keys);
 void take_redraw();
 
 }  // namespace whisker
