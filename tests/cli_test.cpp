@@ -73,7 +73,8 @@ class CommandLineE2E : public ::testing::Test {
 }  // namespace
 
 TEST_F(CommandLineE2E, HeadlessTakesFramesElseTheScenesTarget) {
-  const std::string base = "--headless --quiet --scene " + scene(16, 16, 2, 6) + " --stats " +
+  // Anti-aliasing on: a random estimate, so the passes are not all the same.
+  const std::string base = "--headless --quiet --scene " + scene(16, 16, 2, 6) + " --aa on --stats " +
                            f("s.json") + " ";
   struct Case {
     std::string args;
@@ -97,6 +98,22 @@ TEST_F(CommandLineE2E, HeadlessTakesFramesElseTheScenesTarget) {
                               f("s.json");
   ASSERT_EQ(run(endless).code, 0);
   EXPECT_EQ(stats()["spp"], 3);
+  // A deterministic estimate (no indirect light, no anti-aliasing, no
+  // Fresnel choice) without --frames or --target-spp: one pass, said exact;
+  // --frames still gives its passes.
+  const std::string exact = "--headless --quiet --scene " + scene(16, 16, 2, 6) + " --stats " +
+                            f("s.json");
+  const Outcome one = run(exact);
+  ASSERT_EQ(one.code, 0) << one.err;
+  EXPECT_EQ(stats()["passes"], 1);
+  EXPECT_EQ(stats()["spp"], 2);
+  EXPECT_EQ(stats()["exact"], true);
+  // The summary line says so and names every output, --stats included.
+  EXPECT_NE(one.out.find("exact"), std::string::npos) << one.out;
+  EXPECT_NE(one.out.find("-> " + f("s.json")), std::string::npos) << one.out;
+  ASSERT_EQ(run(exact + " --frames 3").code, 0);
+  EXPECT_EQ(stats()["passes"], 3);
+  EXPECT_EQ(stats()["exact"], true);
   // Both set where the render stops: refused, never one silently ignored.
   const Outcome both = run(base + "--frames 2 --target-spp 4");
   EXPECT_EQ(both.code, 2);
@@ -123,7 +140,8 @@ TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
       {"--headless --frams 2" + small + out, "unknown option --frams; did you mean --frames?"},
       {"--headless" + small + out + " --frames", "--frames: needs a value"},
       {"--headless stray" + small + out, "unexpected argument stray"},
-      {"--headless --float-units nits" + small + out, "--float-units"},
+      {"--headless --float-units nits" + small + out, "--float-units nits: expected scene or display"},
+      {"--headless --float-units Display" + small + out, "--float-units Display: expected scene or display"},
       {"--headless --float-units display" + small + out, "--float-units display is for --headless --out-float"},
       {"--headless" + small + " --out " + f("x.jpg"), "must end in .png"},
       {"--headless --light 1e8,0,0" + small + out, "--light 1e8,0,0: coordinates must be in [-1e7, 1e7]"},
@@ -194,7 +212,7 @@ TEST_F(CommandLineE2E, ProgressLinesWhenStderrIsALog) {
 
 TEST_F(CommandLineE2E, DisplayReferredFloatsAndWhatTheFileRecords) {
   const std::string base =
-      "--headless --quiet --scene " + scene(16, 16, 1, 2) + " --seed 7 --stats " + f("s.json");
+      "--headless --quiet --scene " + scene(16, 16, 1, 2) + " --seed 7 --aa on --stats " + f("s.json");
   ASSERT_EQ(run(base + " --out-float " + f("scene.pfm")).code, 0);
   EXPECT_EQ(stats()["float_units"], "scene");
   const Outcome r = run(base + " --out-float " + f("display.pfm") + " --float-units display");

@@ -123,34 +123,90 @@ TEST(Progressive, ReachingTheTargetStops) {
 
 // With previews on, a new generation first shows a coarse image (one sample
 // per 4x4 block, flagged) ...
-TEST(Progressive, CoarsePreviewComesFirst) {
-  // Full size on one worker: the first real pass takes far longer than the
-  // preview (1/16 of its samples), so polling sees the preview.
+TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
+  // The viewer's quick passes (set_preview): an edit's first images are
+  // whole passes of one path per sample, published apart from the
+  // generation's own, pixel for pixel what a render with the quick settings
+  // gives (no blocks, no mosaic).
   Scene scene = load_scene(resolve_scene("indirect"));
-  scene.settings.target_spp = 1;
+  scene.camera.width = 96;
+  scene.camera.height = 80;
+  scene.settings.split = {4, 4};
+  scene.settings.reuse = 4;
+  scene.settings.target_spp = 2;
+  ASSERT_TRUE(ProgressiveRenderer::quick_differs(scene.settings));
   ProgressiveRenderer r(1);
   r.set_preview(true);
   const auto gen = r.set_scene(scene);
   r.start();
-  Snapshot first;
-  while (!r.snapshot(first)) std::this_thread::yield();
-  EXPECT_TRUE(first.preview);
-  EXPECT_EQ(first.generation, gen);
-  EXPECT_EQ(first.spp, 1u);
-  for (int y = 0; y < 4; ++y)  // blocks of 4x4 share one value
-    for (int x = 0; x < 4; ++x) EXPECT_EQ(first.mean(x + 200, y + 300, 2), first.mean(200, 300, 2));
-  ASSERT_TRUE(r.wait_for(gen, 1));  // previews never satisfy a wait
-  Snapshot done;
-  r.snapshot(done);
+  Snapshot quick;
+  while (!r.quick_snapshot(quick)) std::this_thread::yield();
+  EXPECT_EQ(quick.generation, gen);
+  EXPECT_EQ(quick.spp, 1u);
+  ASSERT_TRUE(r.wait_for(gen, 2));
+  Snapshot own;
+  r.snapshot(own);
   r.stop();
-  EXPECT_FALSE(done.preview);
-  EXPECT_EQ(done.spp, 1u);
-  EXPECT_EQ(done.passes, 1u);
+  Scene cheap = scene;
+  cheap.settings = ProgressiveRenderer::quick_settings(scene.settings);
+  cheap.settings.target_spp = 1;
+  EXPECT_EQ(quick.sum, render(cheap, 1).sum);
+  // No 4x4 blocks: most horizontal neighbours differ (each pixel its own path).
+  int differ = 0, pairs = 0;
+  for (int y = 0; y < quick.height; ++y)
+    for (int x = 0; x + 1 < quick.width; ++x, ++pairs)
+      differ += quick.mean(x, y, 0) + quick.mean(x, y, 1) + quick.mean(x, y, 2) !=
+                quick.mean(x + 1, y, 0) + quick.mean(x + 1, y, 1) + quick.mean(x + 1, y, 2);
+  EXPECT_GT(differ, pairs / 2);
+  EXPECT_FALSE(own.preview);
+  EXPECT_EQ(own.spp, 2u);
+  EXPECT_EQ(own.passes, 2u);
+  EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
 }
 
-// ... and the accumulation that follows is exactly the one without
-// previews: the preview never mixes in, also across an edit.
-TEST(Progressive, CoarsePreviewIsNeverAccumulated) {
+TEST(Progressive, QuickPassesOnlyWhenTheyAreCheaper) {
+  RenderSettings s;
+  s.indirect = false;
+  s.spp = 1;
+  s.split = {4, 4};
+  EXPECT_FALSE(ProgressiveRenderer::quick_differs(s));  // splitting needs indirect light
+  s.spp = 4;
+  EXPECT_TRUE(ProgressiveRenderer::quick_differs(s));
+  s.spp = 1;
+  s.indirect = true;
+  EXPECT_TRUE(ProgressiveRenderer::quick_differs(s));
+  s.split = {1};
+  s.reuse = 1;
+  EXPECT_FALSE(ProgressiveRenderer::quick_differs(s));
+}
+
+// A deterministic estimate (no indirect light, no jitter, no Fresnel choice)
+// is done after one pass when asked, whatever the target; Fresnel on a scene
+// with glass is not deterministic.
+TEST(Progressive, ADeterministicEstimateStopsAfterOnePass) {
+  Scene scene = small_scene(1, 64);
+  scene.settings.indirect = scene.settings.aa = scene.settings.fresnel = false;
+  ASSERT_TRUE(deterministic_estimate(scene));
+  Scene fresnel = scene;
+  fresnel.settings.fresnel = true;
+  EXPECT_FALSE(deterministic_estimate(fresnel));  // three-balls has glass
+  ProgressiveRenderer r(2);
+  r.set_stop_when_exact(true);
+  const auto gen = r.set_scene(scene);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 64));  // returns on `done`
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  Snapshot s;
+  r.snapshot(s);
+  r.stop();
+  EXPECT_TRUE(s.done);
+  EXPECT_EQ(s.passes, 1u);
+  EXPECT_EQ(s.spp, 1u);
+}
+
+// ... and the accumulation that follows is exactly the one without quick
+// passes: they never mix in, also across an edit.
+TEST(Progressive, QuickPassesAreNeverAccumulated) {
   const Scene before = small_scene(1, 0);
   Scene after = small_scene(2, 4);
   after.light.position = vec3(5.0f, 20.0f, 30.0f);
@@ -180,10 +236,10 @@ TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
   EXPECT_EQ(p.sum_sq, y1 * y1 + y2 * y2);
 
   Film film;
-  film.reset(2, 1, false);
+  film.reset(2, 1);
   film.add(1, p);
   Snapshot s;
-  film.publish(s, false);
+  film.publish(s);
   s.spp = 2;
   const Image img = mean_image(s);
   EXPECT_EQ(img.width, 2);

@@ -2,6 +2,8 @@
 // one message naming the file and the field.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <map>
 #include <string>
 #include <variant>
@@ -82,6 +84,24 @@ TEST(SceneFiles, RoundTripThroughJson) {
   EXPECT_EQ(a.settings.fresnel, b.settings.fresnel);
   EXPECT_EQ(a.settings.split_weights, b.settings.split_weights);
   EXPECT_EQ(a.light.position, b.light.position);
+}
+
+// Saved scenes write each float by its shortest round-trip digits: the cat's
+// mesh scale is "0.6", not 0.6000000238418579, and reads back the same.
+TEST(SceneFiles, FloatsAreWrittenByTheirShortestDigits) {
+  Scene a = load_scene(resolve_scene("cat"));
+  a.spheres[0].radius = 9.8f;
+  a.camera.fov_deg = 37.3f;
+  const std::string text = scene_to_json(a);
+  EXPECT_NE(text.find("\"scale\": 0.6,"), std::string::npos) << text;
+  EXPECT_NE(text.find("9.8"), std::string::npos);
+  EXPECT_NE(text.find("37.3"), std::string::npos);
+  EXPECT_EQ(text.find("0000002"), std::string::npos) << text;  // 0.6000000238...
+  EXPECT_EQ(text.find("99999"), std::string::npos) << text;    // 9.8 as 9.80000019 or 9.7999...
+  const Scene b = parse_scene(text, "x.json", std::filesystem::path(a.source_path).parent_path());
+  EXPECT_EQ(b.meshes[0].scale, a.meshes[0].scale);
+  EXPECT_EQ(b.spheres[0].radius, 9.8f);
+  EXPECT_EQ(b.camera.fov_deg, 37.3f);
 }
 
 TEST(Split, WeightsScaleByTheMostWeightedCarriedChannel) {

@@ -16,6 +16,8 @@
 #include "geometry/mesh.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
+#include "scene/world.h"
+#include "viewer/blend.h"
 #include "viewer/camera_control.h"
 #include "viewer/controller.h"
 #include "viewer/debug_views.h"
@@ -595,4 +597,95 @@ TEST(Compare, HoldKeepsTheImageThroughAnEdit) {
   ctl.apply_edits(0.0);
   EXPECT_NE(s.generation, before);
   EXPECT_EQ(s.held.sum, held);
+}
+
+// The camera stays in the room: wheel notches out from the cat's camera
+// (z = 55, the back wall at z = 60) and drags that would orbit the eye
+// under the floor stop short of the surface, and the eye stays inside.
+TEST(CameraControl, WheelAndDragsKeepTheEyeInTheRoom) {
+  const Scene cat = load_scene(resolve_scene("cat"));
+  const World world(cat);
+  std::string why;
+  ASSERT_TRUE(eye_inside_room(cat.camera, world, &why)) << why;
+  Camera c = cat.camera;
+  MouseCamera mouse;
+  MouseInput wheel;
+  wheel.wheel = -1.0f;  // one notch out
+  for (int k = 0; k < 10; ++k) {
+    bool stopped = false;
+    mouse.update(c, wheel, 1.0f, &world, &stopped);
+    if (k == 0) {
+      EXPECT_TRUE(stopped);
+    }
+    EXPECT_LT(c.position.z, 60.0) << "notch " << k;
+    ASSERT_TRUE(eye_inside_room(c, world, &why)) << "notch " << k << ": " << why;
+  }
+  EXPECT_GT(c.position.z, 59.0);  // it went as far as the wall allows
+  // A long left drag down: without the stop the eye orbits under the floor.
+  Camera d = cat.camera;
+  MouseInput press;
+  press.clicked[0] = press.down[0] = true;
+  mouse.update(d, press, 1.0f, &world);
+  MouseInput drag;
+  drag.down[0] = true;
+  drag.dy = -25.0f;  // lowers the eye (orbit turns by -dy)
+  for (int k = 0; k < 8; ++k) {
+    mouse.update(d, drag, 1.0f, &world);
+    ASSERT_TRUE(eye_inside_room(d, world, &why)) << "step " << k << ": " << why;
+    // Above the floor: outside its sphere (centre (0, -1000, 0), radius 990).
+    EXPECT_GT(glm::length(d.position - glm::dvec3(0.0, -1000.0, 0.0)), 990.0) << "step " << k;
+  }
+  // Without the World the same drag goes below the floor: the test can fail.
+  Camera free = cat.camera;
+  MouseCamera m2;
+  m2.update(free, press, 1.0f);
+  for (int k = 0; k < 8; ++k) m2.update(free, drag, 1.0f);
+  EXPECT_FALSE(eye_inside_room(free, world));
+}
+
+TEST(CameraControl, AnEyeBehindTheWallIsReported) {
+  const Scene cat = load_scene(resolve_scene("cat"));
+  const World world(cat);
+  Camera c = cat.camera;
+  c.position.z = 61.1;  // one old wheel notch out
+  std::string why;
+  EXPECT_FALSE(eye_inside_room(c, world, &why));
+  EXPECT_NE(why.find("behind a surface"), std::string::npos) << why;
+}
+
+// The window's image after an edit: the quick passes alone, then combined
+// with the generation's own by count x fixed weight, then the own alone.
+TEST(Blend, QuickThenCombinedThenTheOwnPassesAlone) {
+  RenderSettings st;
+  st.indirect = true;
+  st.split = {4, 2};  // one own sample weighs 8 quick ones
+  ASSERT_EQ(own_sample_weight(st), 8.0);
+  Snapshot own, quick;
+  own.width = quick.width = 1;
+  own.height = quick.height = 1;
+  quick.generation = 2;
+  quick.spp = 4;
+  quick.sum = {4.0f, 8.0f, 0.0f};  // mean 1, 2, 0
+  own.generation = 1;
+  own.spp = 3;
+  own.sum = {30.0f, 30.0f, 30.0f};
+  Shown out;
+  blend_for_display(own, quick, st, out);  // the own passes are the old edit's
+  EXPECT_EQ(out.quick_spp, 4u);
+  EXPECT_EQ(out.image.mean(0, 0, 0), 1.0f);
+  own.generation = 2;
+  own.spp = 1;
+  own.sum = {3.0f, 3.0f, 3.0f};  // mean 3
+  blend_for_display(own, quick, st, out);
+  // weights 8 x 1 own, 1 x 4 quick: (8 * 3 + 4 * 1) / 12, (8 * 3 + 4 * 2) / 12, 24 / 12
+  EXPECT_FLOAT_EQ(out.image.mean(0, 0, 0), 28.0f / 12.0f);
+  EXPECT_FLOAT_EQ(out.image.mean(0, 0, 1), 32.0f / 12.0f);
+  EXPECT_FLOAT_EQ(out.image.mean(0, 0, 2), 2.0f);
+  EXPECT_EQ(out.image.spp, 1u);
+  EXPECT_EQ(out.quick_spp, 4u);
+  own.spp = 8;  // 64 >= 16 x 4: the quick samples are dropped
+  own.sum = {24.0f, 24.0f, 24.0f};
+  blend_for_display(own, quick, st, out);
+  EXPECT_EQ(out.quick_spp, 0u);
+  EXPECT_EQ(out.image.sum, own.sum);
 }

@@ -33,16 +33,28 @@ TEST(Progress, CountsThePassInFlightAndEstimatesFromTheRate) {
   EXPECT_DOUBLE_EQ(p.eta, 42.5);  // 85 spp left at 2 spp/s
 }
 
-TEST(Progress, ALongFirstPassAlreadyHasAnEstimate) {
+// Rates and time left come from published passes only: a pass in flight
+// moves the bar but not the rate (a preview's or a partial pass's rate is
+// not the render's).
+TEST(Progress, RatesComeFromPublishedPassesOnly) {
   ProgressInput in;
   in.target_spp = 64;
   in.pass_spp = 64;  // one pass for the whole target
   in.tiles_done = 16;
   in.tiles_total = 256;
   in.pass_seconds = 4.0;
-  const ProgressInfo p = estimate_progress(in);
+  ProgressInfo p = estimate_progress(in);
   EXPECT_DOUBLE_EQ(p.done_spp, 4.0);
-  EXPECT_DOUBLE_EQ(p.eta, 60.0);  // 15/16 of the pass left
+  EXPECT_EQ(p.spp_per_second, 0.0);  // "-": no pass is in yet
+  EXPECT_LT(p.eta, 0.0);
+  in.spp_done = 8;
+  in.seconds_done = 2.0;
+  in.pass_spp = 8;
+  in.tiles_done = 128;  // half of the next pass: not in the rate
+  in.pass_seconds = 10.0;
+  p = estimate_progress(in);
+  EXPECT_DOUBLE_EQ(p.spp_per_second, 4.0);
+  EXPECT_DOUBLE_EQ(p.eta, (64.0 - 12.0) / 4.0);
 }
 
 TEST(Progress, NoTargetNoEtaAndNothingDoneNoRate) {

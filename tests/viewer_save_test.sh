@@ -17,9 +17,10 @@ bin=$1 dir=$2
 open_viewer E "--frames 2" || exit 0
 wait_spp 2  # the title carries the samples per pixel: both passes done
 sleep 1
-# Ctrl+click turns the exposure slider (912x800 window, panel right) into a
-# text field.
-xdotool mousemove --window "$wid" 640 331; sleep 0.2
+# Open the Display section (collapsed at first), then Ctrl+click turns the
+# exposure slider (912x800 window, panel right) into a text field.
+click 640 290
+xdotool mousemove --window "$wid" 640 313; sleep 0.2
 xdotool keydown ctrl; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; xdotool keyup ctrl; sleep 0.5
 xdotool keydown ctrl; sleep 0.2; xdotool key a; sleep 0.3; xdotool keyup ctrl; xdotool type --delay 150 -- "-2"; sleep 0.3; press Return
 xdotool mousemove --window "$wid" 900 790; sleep 0.5

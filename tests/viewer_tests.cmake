@@ -36,3 +36,9 @@ add_test(NAME ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_save_test.sh $<TARGET_FILE:whisker>)
 set_tests_properties(ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# The camera stops at the wall; quick key presses all count.
+add_test(NAME ViewerInput.WheelStaysInTheRoomNoKeyPressLost
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_room_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.WheelStaysInTheRoomNoKeyPressLost PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)

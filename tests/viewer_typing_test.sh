@@ -33,8 +33,8 @@ INNER
 
 # Where the fields are in the 912x800 window (image 512 wide, panel right).
 cat >"$dir/layout.sh" <<'INNER'
-PATH_X=640 PATH_Y=538
-TARGET_X=620 TARGET_Y=791
+PATH_X=640 PATH_Y=405
+TARGET_X=620 TARGET_Y=658
 INNER
 
 timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir" "$(dirname "$0")/viewer_drive.sh"

@@ -141,15 +141,23 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                         "Viewer script: apply --edit-light after K passes"),
          0, 1 << 24);
   app.add_option("--edit-light", o.edit_light, "Viewer script: new light position x,y,z");
+  app.add_option("--edit-orbit", o.edit_orbit,
+                 "Viewer script: after --edit-after K passes, orbit the camera by dx,dy radians "
+                 "(as a left drag)");
+  app.add_option("--edit-toggle", o.edit_toggle,
+                 "Viewer script: after --edit-after K passes, switch indirect, aa or fresnel");
+  app.add_option("--edit-log", o.edit_log,
+                 "Viewer: write a line per drawn frame and per edit (times, generations, "
+                 "samples) to this file, for bench/viewer_latency.sh");
   app.add_flag("--quiet", o.quiet, "No progress line");
   number_in(app.add_option("--progress", o.progress_every,
                            "Headless, stderr not a terminal (a pipe, a log): a progress line "
                            "every SECONDS (default 5)"),
             0.01, 1e9);
+  // Checked in check_outputs, in the words of every other refusal.
   app.add_option("--float-units", o.float_units,
                  "--out-float values: scene (radiance) or display (1.0 = the PNG's white, "
                  "255^2.2 radiance)")
-      ->check(CLI::IsMember({"scene", "display"}))
       ->capture_default_str();
   app.add_option("--samples", o.samples,
                  "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
@@ -421,6 +429,11 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
     if (ext == ".exr" && !have_exr())
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
+  if (cl.float_units != "scene" && cl.float_units != "display")
+    return "--float-units " + cl.float_units + ": expected scene or display";
+  if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
+      cl.edit_toggle != "fresnel")
+    return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";

@@ -27,6 +27,9 @@ struct CommandLine {
   std::string out_png, out_float, stats_json, screenshot;
   int edit_after = -1;
   std::string edit_light;
+  std::string edit_orbit;   // "dx,dy" radians, as a left drag
+  std::string edit_toggle;  // "indirect", "aa" or "fresnel"
+  std::string edit_log;     // the viewer's event log (bench/viewer_latency.sh)
   bool quiet = false;
   double progress_every = 5.0;      // seconds between progress lines in a log
   std::string float_units = "scene";  // of --out-float: "scene" or "display"

@@ -1,5 +1,6 @@
 #include "app/headless.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -52,6 +53,7 @@ ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
 
 // The images, the summary line and the stats of a finished render.
 int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, int threads) {
+  const bool exact = deterministic_estimate(scene);
   const double secs = snap.seconds;
   const double pixels = double(snap.width) * snap.height;
   const double samples = pixels * double(snap.spp);
@@ -71,14 +73,17 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
       scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
       secs > 0 ? samples / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
       (unsigned long long)snap.nan_count, threads);
+  if (exact) std::printf(", exact (deterministic estimate: every pass is the same)");
   if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
   if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
   if (!o.out_sum.empty()) std::printf(" -> %s", o.out_sum.c_str());
+  if (!o.stats_json.empty()) std::printf(" -> %s", o.stats_json.c_str());
   std::printf("\n");
 
   if (!o.stats_json.empty()) {
     RenderStats st{scene.name, &snap, threads, &scene.settings, {}};
     st.extra.emplace_back("camera", RenderStats::JsonText{camera_json(scene)});
+    st.extra.emplace_back("exact", RenderStats::JsonText{exact ? "true" : "false"});
     if (!o.out_float.empty())
       st.extra.emplace_back("float_units", std::string(o.display_units ? "display" : "scene"));
     write_stats_json(o.stats_json, st);
@@ -180,8 +185,11 @@ class Progress {
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
   scene.name = cut_for_message(scene.name);  // as echoed in the progress, the summary, the stats
+  // A deterministic estimate is exact after one pass: more add nothing.
+  const bool exact = o.one_pass_if_exact && deterministic_estimate(scene);
   const std::uint64_t target =
-      o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
+      exact ? std::uint64_t(std::max(1, scene.settings.spp))
+      : o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
   scene.settings.target_spp = int(target);
   if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 

@@ -24,6 +24,10 @@ struct HeadlessOptions {
   // = 0, the frames x spp samples of a render from sample 0.
   ShardPlan plan;
   std::string out_sum;  // accumulation file (.exr)
+  // No --frames, --target-spp, --samples or --resume on the command line: a
+  // scene whose estimate is deterministic (deterministic_estimate) renders
+  // one pass, whatever its file's target.
+  bool one_pass_if_exact = false;
   double checkpoint = -1;  // seconds between --out-sum writes while rendering (< 0: off)
 };
 

@@ -32,6 +32,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.display_units = cl.float_units == "display";
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
+  h.one_pass_if_exact =
+      cl.frames <= 0 && !given(cl, "--target-spp") && cl.samples.empty() && cl.resume.empty();
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   install_signal_handlers(true);
   return run_headless(h);
@@ -46,11 +48,25 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   v.frames = cl.frames;
   v.screenshot_path = cl.screenshot;
   if (!cl.screenshot.empty() && cl.frames <= 0) return usage_error("--screenshot needs --frames N");
-  if (cl.edit_after >= 0 || !cl.edit_light.empty()) {
-    const auto p = parse_point(cl.edit_light);
-    if (cl.edit_after < 0 || !p)
-      return usage_error("--edit-after K and --edit-light x,y,z go together");
-    v.edits.push_back(ScriptedEdit{cl.edit_after, *p});
+  v.event_log = cl.edit_log;
+  const bool any_edit = !cl.edit_light.empty() || !cl.edit_orbit.empty() || !cl.edit_toggle.empty();
+  if (cl.edit_after >= 0 || any_edit) {
+    if (cl.edit_after < 0 || !any_edit)
+      return usage_error(
+          "--edit-after K goes with one of --edit-light x,y,z, --edit-orbit dx,dy, --edit-toggle NAME");
+    ScriptedEdit e;
+    e.after_pass = cl.edit_after;
+    if (!cl.edit_light.empty()) {
+      e.light_position = parse_point(cl.edit_light);
+      if (!e.light_position) return usage_error("--edit-light " + cl.edit_light + ": expected x,y,z");
+    }
+    if (!cl.edit_orbit.empty()) {
+      const auto p = parse_point(cl.edit_orbit + ",0");
+      if (!p) return usage_error("--edit-orbit " + cl.edit_orbit + ": expected dx,dy");
+      e.orbit = glm::dvec2(p->x, p->y);
+    }
+    e.toggle = cl.edit_toggle;
+    v.edits.push_back(e);
   }
   const int code = run_viewer(v);
   if (code == 3)

@@ -82,7 +82,7 @@ Image mean_image(const Snapshot& s) {
   return img;
 }
 
-void Film::reset(int width, int height, bool preview) {
+void Film::reset(int width, int height) {
   width_ = width;
   height_ = height;
   const std::size_t pixels = std::size_t(width) * height;
@@ -90,32 +90,18 @@ void Film::reset(int width, int height, bool preview) {
   acc_sq_.assign(pixels, 0.0);
   acc_odd_.assign(pixels, 0.0);
   halves_known_ = true;
-  if (preview) preview_.assign(pixels * 3, 0.0f);
 }
 
-void Film::fill_preview(int x0, int y0, int x1, int y1, glm::vec3 c) {
-  if (!finite_sample(c)) c = glm::vec3(0.0f);
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int ch = 0; ch < 3; ++ch) preview_[(std::size_t(y) * width_ + x) * 3 + ch] = c[ch];
-}
-
-void Film::publish(Snapshot& s, bool preview) const {
+void Film::publish(Snapshot& s) const {
   s.width = width_;
   s.height = height_;
-  if (preview) {
-    s.sum = preview_;
-    s.sum_sq.assign(acc_sq_.size(), 0.0);
+  s.sum.resize(acc_.size());
+  for (std::size_t k = 0; k < acc_.size(); ++k) s.sum[k] = float(acc_[k]);
+  s.sum_sq = acc_sq_;
+  if (halves_known_)
+    s.odd_sum = acc_odd_;
+  else
     s.odd_sum.clear();
-  } else {
-    s.sum.resize(acc_.size());
-    for (std::size_t k = 0; k < acc_.size(); ++k) s.sum[k] = float(acc_[k]);
-    s.sum_sq = acc_sq_;
-    if (halves_known_)
-      s.odd_sum = acc_odd_;
-    else
-      s.odd_sum.clear();
-  }
 }
 
 void Film::publish_exact(Snapshot& s) const {

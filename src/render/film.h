@@ -22,7 +22,7 @@ inline float luminance(const glm::vec3& c) {
 }
 
 // The NaN policy: a sample with a non-finite channel is never accumulated;
-// it is dropped and counted (Snapshot::nan_count). A preview shows it black.
+// it is dropped and counted (Snapshot::nan_count).
 inline bool finite_sample(const glm::vec3& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
@@ -48,8 +48,8 @@ struct Snapshot {
   std::uint64_t rays = 0;       // rays traced this generation
   double seconds = 0.0;         // render time this generation
   bool done = false;            // reached the target samples per pixel
-  // A coarse preview of a new generation (one sample per 4x4 block, spp = 1
-  // for display): shown until the first real pass, never accumulated.
+  // A quick pass's image (ProgressiveRenderer::set_preview: one path per
+  // sample, shown in the first moments after an edit), never a render's.
   bool preview = false;
   std::size_t triangles = 0;  // the scene's geometry, for display
   std::size_t bvh_nodes = 0;
@@ -109,8 +109,8 @@ struct PixelSum {
 // The accumulation of one generation; pixels are written by one thread each.
 class Film {
  public:
-  // Clears to black at the given size; with `preview`, also a preview image.
-  void reset(int width, int height, bool preview);
+  // Clears to black at the given size.
+  void reset(int width, int height);
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -122,11 +122,9 @@ class Film {
     acc_sq_[pixel] += p.sum_sq;
     acc_odd_[pixel] += p.odd_sum;
   }
-  // The preview's pixels [x0, x1) x [y0, y1) show c (black if not finite).
-  void fill_preview(int x0, int y0, int x1, int y1, glm::vec3 c);
 
-  // Copies the sums (or the preview, shown as one sample) into `s`.
-  void publish(Snapshot& s, bool preview) const;
+  // Copies the sums into `s`.
+  void publish(Snapshot& s) const;
   // Copies the double sums as they are into s.exact_sum and s.exact_sum_sq.
   void publish_exact(Snapshot& s) const;
   // Starts from these sums (a resumed render); sizes must match the film's.
@@ -139,7 +137,6 @@ class Film {
   std::vector<double> acc_sq_;  // luminance sums of squares
   std::vector<double> acc_odd_; // luminance sums of the odd-indexed samples
   bool halves_known_ = true;    // false once loaded from a part
-  std::vector<float> preview_;  // the coarse preview pass's image
 };
 
 }  // namespace whisker

@@ -18,7 +18,6 @@ namespace whisker {
 
 namespace {
 constexpr int kTile = 32;
-constexpr int kPreviewBlock = 4;  // the preview renders one sample per 4x4 block
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
@@ -37,6 +36,13 @@ struct ProgressiveRenderer::Job {
   int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
   Film film;
   bool preview_pass = false;
+  // Quick passes (set_preview): their own scene settings, film and counts.
+  Scene quick_scene;
+  Film quick_film;
+  bool exact = false;  // deterministic_estimate(scene)
+  bool quick_active = false;  // this generation may still run quick passes
+  std::uint64_t quick_spp = 0;
+  double quick_seconds = 0.0;
   std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
   std::uint64_t first_sample = 0;  // sample index of the generation's first sample
   double seconds = 0.0;
@@ -49,6 +55,20 @@ struct ProgressiveRenderer::Job {
   std::atomic<std::uint64_t> pass_nans{0}, pass_rays{0};
   std::atomic<bool> aborted{false};
 };
+
+bool deterministic_estimate(const Scene& scene) {
+  const RenderSettings& s = scene.settings;
+  if (s.indirect || s.aa) return false;
+  if (!s.fresnel) return true;
+  const auto glass = [](const Material& m) {
+    return m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass;
+  };
+  for (const SphereObject& sp : scene.spheres)
+    if (glass(sp.material)) return false;
+  for (const MeshObject& m : scene.meshes)
+    if (glass(m.material)) return false;
+  return true;
+}
 
 ProgressiveRenderer::ProgressiveRenderer(int threads) {
   threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -88,7 +108,7 @@ void ProgressiveRenderer::set_target_spp(int target_spp) {
   }
   // The published image is no longer "done" if the target went up.
   std::lock_guard lock(publish_mutex_);
-  if (published_.generation == gen && !published_.preview)
+  if (published_.generation == gen && !published_.preview && !(stop_when_exact_ && job_exact_published_))
     published_.done = target > 0 && published_.spp >= std::uint64_t(target);
 }
 
@@ -164,6 +184,33 @@ bool ProgressiveRenderer::snapshot(Snapshot& out) const {
   return true;
 }
 
+bool ProgressiveRenderer::quick_snapshot(Snapshot& out) const {
+  std::lock_guard lock(publish_mutex_);
+  if (quick_published_.version == out.version) return false;
+  out = quick_published_;
+  return true;
+}
+
+bool ProgressiveRenderer::quick_differs(const RenderSettings& s) {
+  if (s.spp > 1) return true;
+  if (!s.indirect) return false;  // splitting and reuse act on indirect paths only
+  if (reuses_paths(s)) return true;
+  for (int f : s.split)
+    if (f > 1) return true;
+  return false;
+}
+
+RenderSettings ProgressiveRenderer::quick_settings(const RenderSettings& s) {
+  RenderSettings q = s;
+  q.spp = 1;
+  q.split = {1};
+  q.split_weights = vec3(1.0f);
+  q.reuse = 1;
+  // Samples independent of the generation's own (which use `seed`).
+  q.seed = s.seed ^ 0x9e3779b97f4a7c15ull;
+  return q;
+}
+
 bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
   std::unique_lock lock(publish_mutex_);
   publish_cv_.wait(lock, [&] {
@@ -203,7 +250,8 @@ bool ProgressiveRenderer::begin_pass() {
     // A raised target (set_target_spp) carries on with the same generation.
     if (!fresh) job.scene.settings.target_spp = pending_scene_.settings.target_spp;
     const int target = fresh ? pending_scene_.settings.target_spp : job.scene.settings.target_spp;
-    const bool done = !fresh && target > 0 && job.spp_done >= std::uint64_t(target);
+    const bool exact_done = stop_when_exact_ && job.spp_done > 0 && job.exact;
+    const bool done = !fresh && ((target > 0 && job.spp_done >= std::uint64_t(target)) || exact_done);
     if (!paused_ && pending_generation_ != 0 && (fresh || !done)) break;
     pending_cv_.wait(lock);
   }
@@ -223,18 +271,31 @@ bool ProgressiveRenderer::begin_pass() {
     job.tiles_y = (job.height + kTile - 1) / kTile;
     job.spp_done = job.passes = job.nan_count = job.rays = 0;
     job.seconds = 0.0;
-    job.preview_pass = preview_enabled_;
-    job.film.reset(job.width, job.height, job.preview_pass);
+    job.preview_pass = false;
+    job.exact = deterministic_estimate(job.scene);
+    job.film.reset(job.width, job.height);
+    job.quick_active = preview_enabled_ && !start.resume && quick_differs(job.scene.settings);
+    job.quick_spp = 0;
+    job.quick_seconds = 0.0;
+    if (job.quick_active) {
+      job.quick_scene = job.scene;
+      job.quick_scene.settings = quick_settings(job.scene.settings);
+      job.quick_film.reset(job.width, job.height);
+    }
     adopt_start(start);
   } else {
     lock.unlock();
   }
+  // Quick passes first, for kQuickSeconds; then the generation's own.
+  if (job.quick_active && (job.quick_seconds >= kQuickSeconds || job.spp_done > 0))
+    job.quick_active = false;
+  job.preview_pass = job.quick_active;
   const RenderSettings& s = job.scene.settings;
   int spp = job.preview_pass ? 1 : std::max(1, s.spp);
-  if (s.target_spp > 0)
+  if (s.target_spp > 0 && !job.preview_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   job.pass_spp = spp;
-  job.sample_base = job.first_sample + job.spp_done;
+  job.sample_base = job.preview_pass ? job.quick_spp : job.first_sample + job.spp_done;
   job.next_tile = 0;
   job.pass_nans = 0;
   job.pass_rays = 0;
@@ -268,34 +329,22 @@ void ProgressiveRenderer::adopt_start(const RenderStart& start) {
 void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
   const int tiles = job.tiles_x * job.tiles_y;
-  const Scene& scene = job.scene;
   for (;;) {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
-    if (quit_ || pending_generation_ != job.generation) job.aborted = true;
+    // A quick pass runs to its end (a drag shows each one), but a stop ends it.
+    if (quit_ || (!job.preview_pass && pending_generation_ != job.generation)) job.aborted = true;
     if (job.aborted) break;
     const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
     const int i1 = std::min(job.height, i0 + kTile), j1 = std::min(job.width, j0 + kTile);
     PathStats stats;
+    const Scene& scene = job.preview_pass ? job.quick_scene : job.scene;
+    Film& film = job.preview_pass ? job.quick_film : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
-    if (job.preview_pass) {
-      // One sample at each block's first pixel, copied over the block. Its
-      // sample index lies far beyond any real one, so no sample repeats.
-      for (int i = i0; i < i1; i += kPreviewBlock) {
-        for (int j = j0; j < j1; j += kPreviewBlock) {
-          Sampler sampler = pixel_sampler(scene.settings, *job.cam, Pixel{i, j}, ~std::uint64_t(0));
-          const vec3 c = sample_pixel(ctx, *job.cam, Pixel{i, j}, sampler);
-          job.film.fill_preview(j, i, std::min(j1, j + kPreviewBlock),
-                                std::min(i1, i + kPreviewBlock), c);
-        }
-      }
-      job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
-      continue;
-    }
     const std::uint64_t nans =
-        render_tile(ctx, *job.cam, TileWork{{i0, i1, j0, j1}, job.sample_base, job.pass_spp}, job.film);
+        render_tile(ctx, *job.cam, TileWork{{i0, i1, j0, j1}, job.sample_base, job.pass_spp}, film);
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
     job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
     progress_tiles_done_.fetch_add(1, std::memory_order_relaxed);
@@ -305,24 +354,38 @@ void ProgressiveRenderer::run_tiles() {
 void ProgressiveRenderer::end_pass() {
   Job& job = *job_;
   if (job.aborted) return;
-  // A preview publishes its coarse image in a generation's first snapshot
-  // (every counter still zero) and leaves the accumulation alone.
-  const bool preview = job.preview_pass;
-  job.preview_pass = false;
-  if (!preview) {
-    job.spp_done += std::uint64_t(job.pass_spp);
-    job.passes += 1;
-    job.nan_count += job.pass_nans;
-    job.rays += job.pass_rays;
-    job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
+  if (job.preview_pass) {
+    // A quick pass: its own film and counts, published beside the real ones.
+    job.quick_spp += 1;
+    job.quick_seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
+    std::lock_guard lock(publish_mutex_);
+    Snapshot& q = quick_published_;
+    job.quick_film.publish(q);
+    q.spp = job.quick_spp;
+    q.first_sample = 0;
+    q.generation = job.generation;
+    q.version += 1;
+    q.passes = job.quick_spp;
+    q.seconds = job.quick_seconds;
+    q.nan_count = 0;
+    q.rays = 0;
+    q.done = false;
+    q.preview = true;
+    publish_cv_.notify_all();
+    return;
   }
+  job.spp_done += std::uint64_t(job.pass_spp);
+  job.passes += 1;
+  job.nan_count += job.pass_nans;
+  job.rays += job.pass_rays;
+  job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
   const int target = job.scene.settings.target_spp;
 
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
-  job.film.publish(s, preview);
-  if (publish_exact_ && !preview) job.film.publish_exact(s);
-  s.spp = preview ? 1 : job.spp_done;  // the preview shows as one sample
+  job.film.publish(s);
+  if (publish_exact_) job.film.publish_exact(s);
+  s.spp = job.spp_done;
   s.first_sample = job.first_sample;
   s.generation = job.generation;
   s.version += 1;
@@ -330,8 +393,9 @@ void ProgressiveRenderer::end_pass() {
   s.nan_count = job.nan_count;
   s.rays = job.rays;
   s.seconds = job.seconds;
-  s.done = !preview && target > 0 && job.spp_done >= std::uint64_t(target);
-  s.preview = preview;
+  s.done = (target > 0 && job.spp_done >= std::uint64_t(target)) || (stop_when_exact_ && job.exact);
+  s.preview = false;
+  job_exact_published_ = job.exact;
   s.triangles = job.world.triangle_count();
   s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;
   publish_cv_.notify_all();

@@ -27,6 +27,11 @@ struct RenderStart {
   std::shared_ptr<const Accumulation> resume;
 };
 
+// Whether every pass of `scene` gives the same image: no indirect light, no
+// anti-aliasing jitter, no Fresnel choice at glass (off, or no glass), and the
+// one point light. Its render is exact after one pass.
+bool deterministic_estimate(const Scene& scene);
+
 class ProgressiveRenderer {
  public:
   // threads <= 0: all hardware threads.
@@ -66,14 +71,32 @@ class ProgressiveRenderer {
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
   void set_threads(int threads);  // restarts the pool if running
-  // Before the first full pass of every new generation, publish a coarse
-  // preview (1/16 of a pass) so an edit shows at once. Off by default.
+  // Quick passes (the viewer's): for the first moments of every new
+  // generation (kQuickSeconds of them, before its first full pass) run
+  // cheap passes of one path per sample, no splitting, no path reuse and one
+  // sample per pass, into a film of their own published by quick_snapshot(),
+  // so an edit shows at full resolution at once. They never touch the
+  // generation's own accumulation (snapshot() stays what headless renders),
+  // and a quick pass is not abandoned by a newer edit, so a drag shows
+  // images as fast as quick passes land. Off by default.
   void set_preview(bool on) { preview_enabled_ = on; }
+  static constexpr double kQuickSeconds = 0.4;
+  // Whether quick passes differ from the settings' own passes (they are the
+  // same estimator at one sample per pass without splitting or reuse).
+  static bool quick_differs(const RenderSettings& s);
+  // The settings of a quick pass: one sample, one path, no reuse, its own seed.
+  static RenderSettings quick_settings(const RenderSettings& s);
+  // The latest quick pass's film (its generation, spp = quick samples),
+  // copied if its version differs from out.version. Never waits.
+  bool quick_snapshot(Snapshot& out) const;
   // Run the workers at a lower scheduling priority (nice +5), so that an
   // interactive UI thread on the same cores stays responsive. Takes effect
   // at the next start().
   void set_low_priority(bool on) { low_priority_ = on; }
   int threads() const { return threads_; }
+  // A generation whose estimate is deterministic (deterministic_estimate)
+  // is done after its first pass, whatever its target. Off by default.
+  void set_stop_when_exact(bool on) { stop_when_exact_ = on; }
   // Publish the film's double sums too (Snapshot::exact_sum), for
   // accumulation files. Off by default (a copy per pass).
   void set_publish_exact(bool on) { publish_exact_ = on; }
@@ -103,6 +126,7 @@ class ProgressiveRenderer {
   std::atomic<bool> paused_{false};
   std::atomic<bool> running_{false};
   std::atomic<bool> preview_enabled_{false};
+  std::atomic<bool> stop_when_exact_{false};
   bool low_priority_ = false;
   std::atomic<bool> publish_exact_{false};
   // pending state, guarded by pending_mutex_
@@ -118,6 +142,8 @@ class ProgressiveRenderer {
   mutable std::mutex publish_mutex_;
   std::condition_variable publish_cv_;
   Snapshot published_;
+  Snapshot quick_published_;  // the quick passes' film, same mutex
+  bool job_exact_published_ = false;  // published_ is of a deterministic estimate
   // The pass in flight, for pass_progress(); written by the workers.
   std::atomic<std::uint64_t> progress_generation_{0};
   std::atomic<int> progress_tiles_done_{0}, progress_tiles_total_{0}, progress_spp_{0};

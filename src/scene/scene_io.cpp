@@ -2,6 +2,7 @@
 #include "scene/quote.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cerrno>
 #include <cstdlib>
@@ -307,17 +308,25 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
 }
 
 namespace {
-json to_json(const vec3& v) { return json::array({v.x, v.y, v.z}); }
+// A float as the double with the float's shortest round-trip digits, so the
+// file says 0.6, not 0.6000000238418579 (reading it back gives the same float).
+json num(float f) {
+  if (!std::isfinite(f)) return f;
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, f);
+  return std::strtod(std::string(buf, r.ptr).c_str(), nullptr);
+}
+json to_json(const vec3& v) { return json::array({num(v.x), num(v.y), num(v.z)}); }
 json to_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 json to_json(const Material& m) {
   json j = {{"type", to_string(m.kind)}};
   if (m.kind == MaterialKind::Diffuse) j["albedo"] = to_json(m.albedo);
-  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass) j["ior"] = m.ior;
+  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass) j["ior"] = num(m.ior);
   return j;
 }
 json to_json(const Camera& c) {
   return {{"position", to_json(c.position)}, {"look_at", to_json(c.look_at)},
-          {"up", to_json(c.up)},             {"fov", c.fov_deg},
+          {"up", to_json(c.up)},             {"fov", num(c.fov_deg)},
           {"width", c.width},                {"height", c.height}};
 }
 }  // namespace
@@ -330,19 +339,19 @@ std::string scene_to_json(const Scene& s) {
   json j;
   j["name"] = s.name;
   j["camera"] = to_json(s.camera);
-  j["light"] = {{"position", to_json(s.light.position)}, {"intensity", s.light.intensity}};
+  j["light"] = {{"position", to_json(s.light.position)}, {"intensity", num(s.light.intensity)}};
   j["settings"] = settings_to_json(s.settings);
   j["spheres"] = json::array();
   for (const auto& sp : s.spheres) {
-    json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", sp.radius},
+    json o = {{"name", sp.name}, {"center", to_json(sp.center)}, {"radius", num(sp.radius)},
               {"material", to_json(sp.material)}};
-    if (sp.material.kind == MaterialKind::HollowGlass) o["inner_radius"] = sp.inner_radius;
+    if (sp.material.kind == MaterialKind::HollowGlass) o["inner_radius"] = num(sp.inner_radius);
     j["spheres"].push_back(o);
   }
   if (!s.meshes.empty()) {
     j["meshes"] = json::array();
     for (const auto& m : s.meshes)
-      j["meshes"].push_back({{"name", m.name}, {"path", m.path}, {"scale", m.scale},
+      j["meshes"].push_back({{"name", m.name}, {"path", m.path}, {"scale", num(m.scale)},
                              {"translate", to_json(m.translate)},
                              {"vertex_normals", m.vertex_normals},
                              {"material", to_json(m.material)}});

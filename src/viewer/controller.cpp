@@ -1,6 +1,8 @@
 #include "viewer/controller.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -119,6 +121,8 @@ void Controller::save_scene() {
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       return std::fclose(f) == 0 && ok;
     });
+    s.saved_scene = s.applied;
+    s.have_saved_scene = true;
     s.message = "saved the scene as " + path;
     if (stem != wanted) s.message += " (" + wanted + ".json was taken)";
     s.message_is_error = false;
@@ -132,7 +136,10 @@ void Controller::save_scene() {
 
 void Controller::load(const std::string& name_or_path, double now, bool confirmed,
                       const std::string& mesh) {
-  const bool ask = !confirmed && s.history.can_undo();
+  // Edits that are saved in a scene file are not lost by loading another.
+  const bool saved = s.have_saved_scene && classify_change(s.saved_scene, s.applied) == SceneChange::None &&
+                     classify_change(s.applied, s.edited) == SceneChange::None;
+  const bool ask = !confirmed && s.history.can_undo() && !saved;
   s.pending_load.clear();
   s.pending_mesh.clear();
   try {
@@ -156,6 +163,7 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
     s.history.clear();
+    s.have_saved_scene = false;
     s.message = "loaded " + path.string();
     s.message_is_error = false;
   } catch (const std::exception& e) {
@@ -182,10 +190,49 @@ ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool displ
           {"whisker.settings", settings_to_json(scene.settings).dump()}};
 }
 
+// The image the window shows, as a mean per pixel (spp 1): the live one, the
+// held one, or in a wipe the held one's columns left of the line (the same
+// whole columns as Display::draw_columns) and the live one's right of it.
+static const Snapshot& live_image(const ViewerState& s);
+
+Snapshot shown_means(const ViewerState& s) {
+  const Snapshot& live = live_image(s);
+  const bool held = s.held.spp > 0 && s.held.width == live.width && s.held.height == live.height;
+  const auto means = [](const Snapshot& sn) {
+    Snapshot m = sn;
+    const Image img = mean_image(sn);
+    m.sum = img.rgb;
+    m.spp = 1;
+    m.sum_sq.assign(sn.sum_sq.size(), 0.0);
+    for (std::size_t p = 0; p < m.sum_sq.size() && sn.spp; ++p)
+      m.sum_sq[p] = sn.sum_sq[p] / double(sn.spp);
+    return m;
+  };
+  if (held && s.compare == kCompareHeld) return means(s.held);
+  Snapshot out = means(live);
+  if (held && s.compare == kCompareWipe) {
+    const Snapshot left = means(s.held);
+    const int cols = int(std::lround(std::clamp(s.wipe, 0.0f, 1.0f) * float(live.width)));
+    for (int y = 0; y < live.height; ++y)
+      for (int x = 0; x < cols; ++x) {
+        const std::size_t p = std::size_t(y) * live.width + x;
+        for (int c = 0; c < 3; ++c) out.sum[3 * p + c] = left.sum[3 * p + c];
+        out.sum_sq[p] = left.sum_sq[p];
+      }
+  }
+  return out;
+}
+
+// The live image: what the window shows (viewer/blend.h) once that holds
+// the generation's own passes, else the own passes alone.
+static const Snapshot& live_image(const ViewerState& s) {
+  return s.shown.image.spp > 0 && s.shown.own_spp > 0 ? s.shown.image : s.snap;
+}
+
 void Controller::save() {
-  const Snapshot& sn = s.snap;
-  if (sn.spp == 0 || sn.preview) {
-    s.message = "nothing to save yet";
+  const Snapshot& own = s.snap;
+  if (own.spp == 0 || own.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
+    s.message = "nothing to save yet: the first full pass is not in";
     s.message_is_error = true;
     return;
   }
@@ -194,31 +241,42 @@ void Controller::save() {
     const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
     fs::create_directories(dir);
     const std::string wanted =
-        s.save_name.empty() ? s.scene_label + "-" + std::to_string(sn.spp) + "spp" : s.save_name;
+        s.save_name.empty() ? s.scene_label + "-" + std::to_string(own.spp) + "spp" : s.save_name;
     const std::string float_ext = have_exr() ? ".exr" : ".pfm";
     // Never overwrite: the first free name, and the panel says which.
     const std::string stem = free_stem(dir, wanted, {".png", float_ext});
     const std::string base = (fs::path(dir) / stem).string();
-    // The PNG is what the window shows: exposure, tone curve, gamma, view.
+    // The PNG is what the window shows: exposure, tone curve, gamma, view,
+    // the A/B comparison (held, or the wipe's two sides).
     const bool debug = s.display.mode >= kViewNormals && s.debug.view == s.display.mode;
+    const Snapshot shown = debug ? s.debug.image : shown_means(s);
     const std::vector<unsigned char> rgb =
-        debug ? map_like_display(s.debug.image, DisplayParams{1.0f, 1.0f, 0, 0})
-              : map_like_display(sn, s.display);
-    const Snapshot& shown = debug ? s.debug.image : sn;
+        debug ? map_like_display(shown, DisplayParams{1.0f, 1.0f, 0, 0})
+        : s.display.mode == 1 ? map_like_display(own, s.display)
+                              : map_like_display(shown, s.display);
     write_png_rgb8(base + ".png", shown.width, shown.height, rgb);
-    const Image img = mean_image(sn);
+    // The float file is the live render's mean (with quick samples combined
+    // while the window shows them, viewer/blend.h).
+    const Image img = mean_image(live_image(s));
     const bool display_units = s.save_display_units;
     write_float_image(base + float_ext, display_units ? display_referred(img) : img,
-                      render_record(s.applied, sn, display_units));
+                      render_record(s.applied, own, display_units));
     const char* units = display_units ? " (display units: 1.0 = white)" : " (radiance)";
-    std::string said = "saved " + base + ".png (as shown) and " + base + float_ext + units;
+    const bool wipe = !debug && s.held.spp > 0 && s.compare == kCompareWipe;
+    const char* as_shown = wipe ? " (as shown: held left, live right)" : " (as shown)";
+    std::string said = "saved " + base + ".png" + as_shown + " and " + base + float_ext + units +
+                       (wipe ? " (live)" : "");
     if (stem != wanted) said += "; " + wanted + " was taken, so the name is " + stem;
     std::printf("%s\n", said.c_str());
     std::fflush(stdout);
-    // The panel's two lines: the file names, then the folder (the tooltip
-    // and stdout have the whole line).
-    s.message = "saved " + stem + ".png (as shown) and " + float_ext + units +
-                (stem != wanted ? "; " + wanted + " was taken" : std::string()) + ", in " + dir;
+    // The panel's two lines: the file names, then the folder, by its full
+    // name (the tooltip and stdout have the whole line).
+    std::error_code ec;
+    const fs::path folder = fs::absolute(dir, ec).lexically_normal();
+    std::string where = ec ? dir : folder.string();
+    if (where.size() > 1 && where.back() == '/') where.pop_back();
+    s.message = "saved " + stem + ".png" + as_shown + " and " + float_ext + units +
+                (stem != wanted ? "; " + wanted + " was taken" : std::string()) + ", in " + where;
     s.message_is_error = false;
   } catch (const std::exception& e) {
     s.message = std::string("save failed: ") + e.what();
@@ -227,12 +285,12 @@ void Controller::save() {
 }
 
 void Controller::hold() {
-  if (s.snap.spp == 0 || s.snap.preview) {
+  if (s.snap.spp == 0 || s.snap.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
     s.message = "nothing to hold yet";
     s.message_is_error = true;
     return;
   }
-  s.held = s.snap;
+  s.held = live_image(s);
   const RenderSettings& r = s.applied.settings;
   s.held_note = std::to_string(s.snap.spp) + " spp, Fresnel " + (r.fresnel ? "on" : "off") +
                 ", indirect " + (r.indirect ? "on" : "off");

@@ -1,5 +1,6 @@
 #include "viewer/input.h"
 
+#include <algorithm>
 #include <cmath>
 
 #define GLFW_INCLUDE_NONE
@@ -7,6 +8,7 @@
 #include <imgui.h>
 
 #include "viewer/camera_control.h"
+#include "viewer/window.h"
 
 namespace whisker {
 
@@ -21,7 +23,9 @@ void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& 
   if (keys.redo) req.redo = true;
 }
 
-void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
+void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale, const World* world,
+                         bool* stopped) {
+  const Camera before = cam;
   for (int b = 0; b < 3; ++b) {
     if (in.clicked[b]) dragging_[b] = !in.imgui_wants_mouse;
     if (!in.down[b]) dragging_[b] = false;
@@ -31,24 +35,40 @@ void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale) {
   if (moved && dragging_[0]) orbit(cam, -in.dx * 0.008f, -in.dy * 0.008f);
   if (moved && (dragging_[1] || dragging_[2])) pan(cam, in.dx / image_scale, in.dy / image_scale);
   if (in.wheel != 0.0f && !in.imgui_wants_mouse) dolly(cam, std::pow(0.9f, in.wheel));
+  const bool cut = world && cam.position != before.position && stop_at_surfaces(before, cam, *world);
+  if (stopped) *stopped = cut;
+}
+
+KeyPresses keys_of(const std::vector<KeyPress>& presses) {
+  KeyPresses k;
+  for (const KeyPress& p : presses) {
+    const bool ctrl = (p.mods & GLFW_MOD_CONTROL) != 0, shift = (p.mods & GLFW_MOD_SHIFT) != 0;
+    if (ctrl) {
+      // Ctrl+letter is never the letter's own shortcut; undo and redo repeat.
+      if (p.key == GLFW_KEY_Z) (shift ? k.redo : k.undo) = true;
+      if (p.key == GLFW_KEY_Y) k.redo = true;
+      continue;
+    }
+    if (p.repeat) continue;
+    if (p.key == GLFW_KEY_SPACE) k.space = true;
+    if (p.key == GLFW_KEY_R) k.r = true;
+    if (p.key == GLFW_KEY_S) k.s = true;
+    if (p.key == GLFW_KEY_C) k.c = true;
+    if (p.key == GLFW_KEY_ESCAPE) k.escape = true;
+  }
+  return k;
 }
 
 KeyPresses read_keys() {
-  KeyPresses k;
-  k.space = ImGui::IsKeyPressed(GLFW_KEY_SPACE, false);
-  k.r = ImGui::IsKeyPressed(GLFW_KEY_R, false);
-  k.s = ImGui::IsKeyPressed(GLFW_KEY_S, false);
-  k.c = ImGui::IsKeyPressed(GLFW_KEY_C, false);
-  k.escape = ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false);
-  const ImGuiIO& io = ImGui::GetIO();
-  if (io.KeyCtrl) {
-    const bool z = ImGui::IsKeyPressed(GLFW_KEY_Z, true);
-    k.undo = z && !io.KeyShift;
-    k.redo = (z && io.KeyShift) || ImGui::IsKeyPressed(GLFW_KEY_Y, true);
-    // Ctrl+letter is never the letter's own shortcut.
-    k.r = k.s = k.c = false;
+  // One press of a key per frame: a second one (two Space presses between
+  // two frames) waits for the next frame instead of merging with the first.
+  std::vector<KeyPress> now, later;
+  for (const KeyPress& p : take_key_presses()) {
+    const bool again = std::any_of(now.begin(), now.end(), [&](const KeyPress& q) { return q.key == p.key; });
+    (again || !later.empty() ? later : now).push_back(p);
   }
-  return k;
+  put_back_key_presses(later);
+  return keys_of(now);
 }
 
 MouseInput read_mouse() {

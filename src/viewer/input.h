@@ -5,8 +5,11 @@
 
 #include "scene/scene.h"
 #include "viewer/viewer_state.h"
+#include "viewer/window.h"
 
 namespace whisker {
+
+class World;
 
 // Shortcut keys pressed this frame (not repeats).
 struct KeyPresses {
@@ -39,12 +42,18 @@ class MouseCamera {
  public:
   // `image_scale`: image pixels per window unit, so a pan drags the scene
   // with the mouse.
-  void update(Camera& cam, const MouseInput& in, float image_scale);
+  // With `world`, no move takes the eye into or through a surface
+  // (stop_at_surfaces); `stopped` tells whether one was cut short.
+  void update(Camera& cam, const MouseInput& in, float image_scale, const World* world = nullptr,
+              bool* stopped = nullptr);
 
  private:
   bool dragging_[3] = {false, false, false};
 };
 
+// The shortcuts among GLFW key presses (window.h: take_key_presses).
+KeyPresses keys_of(const std::vector<KeyPress>& presses);
+// This frame's shortcuts: every press since the last frame, none lost.
 KeyPresses read_keys();
 MouseInput read_mouse();
 // True while ImGui takes keyboard input.

@@ -86,10 +86,19 @@ void pixel_readout(const ViewerState& s, const ImageArea& a) {
   const float u = (m.x - a.x) / a.w;
   const bool held = s.held.spp > 0 && (s.compare == kCompareHeld ||
                                        (s.compare == kCompareWipe && u < s.wipe));
-  const Snapshot& sn = held ? s.held : s.snap;
+  // The live side reads what is shown (quick passes combined, viewer/blend.h).
+  const Snapshot& sn = held ? s.held : s.shown.image.spp > 0 ? s.shown.image : s.snap;
   const int x = std::min(sn.width - 1, int(u * sn.width));
   const int y = std::min(sn.height - 1, int((m.y - a.y) / a.h * sn.height));
   const PixelReadout r = read_pixel(sn, x, y);
+  // Over the image, never over the panel: left of the mouse near the right edge.
+  const ImGuiStyle& st = ImGui::GetStyle();
+  const float w = ImGui::CalcTextSize("luminance 1.234e+05 +- 1.23e+03 (12.3 %)").x + 2.0f * st.WindowPadding.x;
+  const float h = ImGui::GetTextLineHeightWithSpacing() * 5.0f + 2.0f * st.WindowPadding.y;
+  float px = m.x + 16.0f, py = m.y + 8.0f;
+  if (px + w > a.x + a.w) px = std::max(a.x, m.x - 8.0f - w);
+  if (py + h > a.y + a.h) py = std::max(a.y, m.y - 8.0f - h);
+  ImGui::SetNextWindowPos(ImVec2(px, py));
   ImGui::BeginTooltip();
   ImGui::Text("pixel (%d, %d)%s", x, y, held ? "  [held image]" : "");
   ImGui::Text("radiance  %.4g  %.4g  %.4g", r.rgb[0], r.rgb[1], r.rgb[2]);
@@ -100,7 +109,8 @@ void pixel_readout(const ViewerState& s, const ImageArea& a) {
     ImGui::Text("luminance %.4g +- %.3g", r.luminance, r.std_error);
   else
     ImGui::Text("luminance %.4g  (error needs 2 samples)", r.luminance);
-  ImGui::Text("%llu samples (std. error of the pixel mean)", (unsigned long long)r.samples);
+  ImGui::Text("%llu sample%s (std. error of the pixel mean)", (unsigned long long)r.samples,
+              r.samples == 1 ? "" : "s");
   ImGui::EndTooltip();
 }
 

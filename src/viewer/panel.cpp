@@ -65,7 +65,7 @@ static void setting_checkboxes(RenderSettings& r) {
 }
 
 static void display_section(ViewerState& s) {
-  if (!ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!ImGui::CollapsingHeader("Display")) return;
   ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
   tip("Brightness of the display in photographic stops: +1 doubles, -1 halves. "
       "0 is the report's mapping. Never restarts the render; Save uses it too.");
@@ -193,6 +193,31 @@ static bool scene_has_glass(const Scene& e) {
   return false;
 }
 
+// One click to glass: every mesh of the scene (the cat) becomes glass, or
+// back to what it was when loaded; Fresnel then has something to act on.
+static void glass_toggle(ViewerState& s) {
+  std::vector<MeshObject>& meshes = s.edited.meshes;
+  bool glass = !meshes.empty();
+  for (const MeshObject& m : meshes) glass = glass && m.material.kind == MaterialKind::Glass;
+  if (!meshes.empty()) {
+    if (ImGui::Checkbox(meshes.size() == 1 ? "glass mesh" : "glass meshes", &glass)) {
+      for (std::size_t i = 0; i < meshes.size(); ++i) {
+        Material before;
+        if (i < s.initial.meshes.size() && s.initial.meshes[i].material.kind != MaterialKind::Glass)
+          before = s.initial.meshes[i].material;
+        Material g;
+        g.kind = MaterialKind::Glass;
+        meshes[i].material = glass ? g : before;
+      }
+    }
+    tip("Make the scene's meshes (the cat) solid glass, refractive index 1.5, or give "
+        "them back their material. With glass, Fresnel matters; the bundled "
+        "glass-cat scene starts this way.");
+    ImGui::SameLine();
+  }
+  if (!scene_has_glass(s.edited)) ImGui::TextDisabled("(no glass: Fresnel does nothing)");
+}
+
 // Path reuse (render/path_reuse.h): the block side.
 static void reuse_slider(RenderSettings& r) {
   // Path reuse shares the bounces leaving the first hit, which only indirect light sends.
@@ -209,8 +234,7 @@ static void sampling_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings& r = s.edited.settings;
   settings_widgets(r);
-  if (!scene_has_glass(s.edited))
-    ImGui::TextDisabled("(no glass in this scene: Fresnel changes nothing)");
+  glass_toggle(s);
   split_widgets(r);
   if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
   tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
@@ -233,7 +257,7 @@ static void bookmarks(const ViewerState& s, PanelRequests& req) {
 
 static void camera_section(ViewerState& s, PanelRequests& req) {
   Camera& camera = s.edited.camera;
-  if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  if (!ImGui::CollapsingHeader("Camera")) return;
   drag_position("eye", &camera.position.x);
   tip("Camera position (x, y, z). Or left-drag on the image to orbit.");
   drag_position("look at", &camera.look_at.x);
@@ -285,6 +309,19 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
 
   status_section(s, now);
   controls(s, req);
+  if (!s.eye_outside.empty()) {
+    // The image is black or wrong from out there: say so, and the way back.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(("Camera outside the room: " + s.eye_outside + ".").c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopStyleColor();
+    if (ImGui::Button("Reset camera##outside")) req.reset_camera = true;
+    tip("Back to the camera of the scene as loaded (Ctrl+Z also takes the move back).");
+  }
+  // The sections scroll on their own when the window is short; the status
+  // lines above always stay in view.
+  ImGui::BeginChild("##sections", ImVec2(0, 0), false);
   display_section(s);
   compare_section(s, req);
   save_section(s, req);
@@ -293,6 +330,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
   sampling_section(s, req);
   camera_section(s, req);
   objects_section(s.edited);
+  ImGui::EndChild();
 
   confirm_load_popup(s, req);
   ImGui::PopItemWidth();

@@ -35,11 +35,15 @@ std::string human(double v) {
   return buf;
 }
 
-const char* state_text(const ViewerState& s) {
+std::string state_text(const ViewerState& s) {
   const Snapshot& sn = s.snap;
   if (s.paused) return "paused";
-  if (sn.preview) return "preview (1 sample per 4x4 block)";
-  if (sn.done && sn.generation == s.generation) return "done: target reached";
+  if (sn.done && sn.generation == s.generation) return deterministic_estimate(s.applied) ? "done: exact" : "done: target reached";
+  // Quick passes after an edit (viewer/blend.h): full resolution, one path a sample.
+  if (s.shown.quick_spp > 0 && s.shown.own_spp == 0)
+    return "quick preview, " + std::to_string(s.shown.quick_spp) + " fast spp";
+  if (s.shown.quick_spp > 0)
+    return "rendering (+" + std::to_string(s.shown.quick_spp) + " fast spp)";
   return "rendering";
 }
 
@@ -51,8 +55,10 @@ ProgressInfo progress_of(const ViewerState& s) {
   in.seconds_done = same ? sn.seconds : 0.0;
   in.target_spp = s.applied.settings.target_spp;
   const auto& p = s.progress;
-  // A finished pass is counted once it is published, not as in flight.
-  if (p.rendering && p.generation == s.generation && !s.paused && p.tiles_done < p.tiles_total) {
+  // A finished pass is counted once it is published, not as in flight; a
+  // quick pass (pass_spp 0) is not counted at all.
+  if (p.rendering && p.generation == s.generation && !s.paused && p.pass_spp > 0 &&
+      p.tiles_done < p.tiles_total) {
     in.pass_spp = p.pass_spp;
     in.tiles_done = p.tiles_done;
     in.tiles_total = p.tiles_total;
@@ -76,7 +82,7 @@ void progress_lines(const ViewerState& s) {
       "Without a target the bar shows the pass in flight.");
   const auto& pr = s.progress;
   const bool in_pass = pr.rendering && pr.generation == s.generation && !s.paused &&
-                       pr.tiles_done < pr.tiles_total;
+                       pr.pass_spp > 0 && pr.tiles_done < pr.tiles_total;
   // Short enough for the panel's width with hours on both clocks.
   char pass[48] = "tiles -";
   if (in_pass) std::snprintf(pass, sizeof pass, "tiles %d/%d", pr.tiles_done, pr.tiles_total);
@@ -104,7 +110,7 @@ void progress_lines(const ViewerState& s) {
 
 // The relative error against passes, log scale, with its axes.
 void error_plot(const ViewerState& s) {
-  const float h = 74.0f * ImGui::GetIO().FontGlobalScale;
+  const float h = 56.0f * ImGui::GetIO().FontGlobalScale;
   const ImVec2 size(ImGui::GetContentRegionAvail().x, h);
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton("##errorplot", size);
@@ -118,7 +124,9 @@ void error_plot(const ViewerState& s) {
   const std::vector<float>& v = s.rse_history;
   const ImU32 text = IM_COL32(170, 170, 180, 255);
   if (v.size() < 2) {
-    dl->AddText(ImVec2(a.x + 6.0f, a.y + 6.0f), text, "the plot starts after pass 2");
+    const bool exact = s.snap.generation == s.generation && s.snap.spp > 0 && deterministic_estimate(s.applied);
+    dl->AddText(ImVec2(a.x + 6.0f, a.y + 6.0f), text,
+                exact ? "exact: every pass gives the same image" : "the plot starts after pass 2");
     dl->AddText(ImVec2(a.x, b.y + 1.0f), text, "pass");
     return;
   }
@@ -152,9 +160,11 @@ void error_plot(const ViewerState& s) {
 void status_section(const ViewerState& s, double now) {
   const Snapshot& sn = s.snap;
   const bool stale = sn.generation != s.generation;
-  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s));
+  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s).c_str());
   progress_lines(s);
-  if (std::isfinite(s.rse))
+  if (!stale && sn.spp > 0 && deterministic_estimate(s.applied))
+    ImGui::Text("noise: none, exact (a deterministic estimate)");
+  else if (std::isfinite(s.rse))
     ImGui::Text("noise: %.3g %% of the mean%s", 100.0 * s.rse, stale ? "  (before the edit)" : "");
   else
     ImGui::Text("noise: - (needs 2 spp)%s", stale ? "  (before the edit)" : "");

@@ -13,9 +13,10 @@ ProgressInfo estimate_progress(const ProgressInput& in) {
     p.pass_fraction = std::clamp(double(in.tiles_done) / in.tiles_total, 0.0, 1.0);
   p.done_spp = double(in.spp_done) + p.pass_fraction * in.pass_spp;
   p.elapsed = in.seconds_done + (in.pass_spp > 0 ? in.pass_seconds : 0.0);
-  // The rate as measured, the pass in flight included, so a long first pass
-  // gives an estimate before it ends.
-  if (p.done_spp > 0.0 && p.elapsed > 0.0) p.spp_per_second = p.done_spp / p.elapsed;
+  // The rate of the passes published so far: a pass in flight, or the
+  // quick passes after an edit, say nothing about it yet.
+  if (in.spp_done > 0 && in.seconds_done > 0.0)
+    p.spp_per_second = double(in.spp_done) / in.seconds_done;
   if (in.target_spp > 0) {
     p.fraction = std::clamp(p.done_spp / in.target_spp, 0.0, 1.0);
     if (p.done_spp >= in.target_spp)

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "viewer/camera_control.h"
+
 namespace whisker {
 
 void ScriptedRun::prepare(ViewerState& s) const {
@@ -18,6 +20,10 @@ void ScriptedRun::apply_due_edit(ViewerState& s) {
   if (sn.generation != s.generation || sn.preview) return;
   if (sn.passes < std::uint64_t(std::max(0, edit.after_pass)) && !sn.done) return;
   if (edit.light_position) s.edited.light.position = *edit.light_position;
+  if (edit.orbit) orbit(s.edited.camera, float(edit.orbit->x), float(edit.orbit->y));
+  if (edit.toggle == "indirect") s.edited.settings.indirect = !s.edited.settings.indirect;
+  if (edit.toggle == "aa") s.edited.settings.aa = !s.edited.settings.aa;
+  if (edit.toggle == "fresnel") s.edited.settings.fresnel = !s.edited.settings.fresnel;
   ++next_edit_;
 }
 

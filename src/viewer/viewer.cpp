@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -21,11 +22,14 @@
 #include "render/progressive.h"
 #include "render/stats_io.h"
 #include "scene/scene_io.h"
+#include "scene/world.h"
+#include "viewer/camera_control.h"
 #include "viewer/controller.h"
 #include "viewer/display.h"
 #include "viewer/input.h"
 #include "viewer/overlay.h"
 #include "viewer/scene_diff.h"
+#include "viewer/screenshot.h"
 #include "viewer/script.h"
 #include "viewer/viewer_state.h"
 #include "viewer/window.h"
@@ -37,51 +41,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
-
-struct FrameStats {
-  std::vector<float> work_ms, total_ms;
-  static float mean(const std::vector<float>& v) {
-    return v.empty() ? 0.0f : std::accumulate(v.begin(), v.end(), 0.0f) / v.size();
-  }
-  static float pct(std::vector<float> v, double p) {
-    if (v.empty()) return 0.0f;
-    std::sort(v.begin(), v.end());
-    return v[std::min(v.size() - 1, std::size_t(p * (v.size() - 1) + 0.5))];
-  }
-};
-
-// A summary next to a scripted screenshot (<screenshot>.json): what was
-// rendered (the shared stats record), where the render area is, how fast the
-// UI ran.
-void write_summary(const std::string& path, const PixelRect& r, const ViewerState& s,
-                   const FrameStats& f, int fb_w, int fb_h) {
-  using V = std::vector<long long>;
-  RenderStats st{s.scene_label, &s.snap, s.threads, &s.applied.settings, {}};
-  const float max_ms =
-      f.total_ms.empty() ? 0.0f : *std::max_element(f.total_ms.begin(), f.total_ms.end());
-  st.extra = {{"framebuffer", V{fb_w, fb_h}},
-              {"render_rect", V{r.x, r.y, r.w, r.h}},
-              {"ui_frames", (long long)f.total_ms.size()},
-              {"ui_frame_ms_mean", double(FrameStats::mean(f.total_ms))},
-              {"ui_frame_ms_p95", double(FrameStats::pct(f.total_ms, 0.95))},
-              {"ui_frame_ms_max", double(max_ms)},
-              {"ui_frame_work_ms_mean", double(FrameStats::mean(f.work_ms))}};
-  write_stats_json(path, st);
-}
-
-// Reads the back buffer into the screenshot and its summary; false (with a
-// message) if either cannot be written.
-bool take_screenshot(const std::string& path, const PixelRect& rect, const ViewerState& s,
-                     const FrameStats& f, int fb_w, int fb_h) {
-  try {
-    write_png_rgb8(path, fb_w, fb_h, read_framebuffer(fb_w, fb_h));
-    write_summary(path + ".json", rect, s, f, fb_w, fb_h);
-    return true;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "whisker: %s\n", e.what());
-    return false;
-  }
-}
 
 // The window's size this frame: framebuffer pixels and window units.
 struct FrameSize {
@@ -121,6 +80,11 @@ struct Session {
   std::uint64_t title_spp = ~0ull;
   std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
   Scene debug_scene{};                   // what s.debug shows
+  // The scene's geometry for the camera's collision rays (its BVH reused
+  // while the meshes stay), and the scene it was built from.
+  std::unique_ptr<World> room{};
+  Scene room_scene{};
+  Camera room_checked_camera{};
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -139,10 +103,15 @@ struct Session {
 
   // Takes a new pass if there is one: to the GPU, and its error to the plot.
   bool take_snapshot() {
-    if (!renderer.snapshot(s.snap)) return false;
+    const bool own = renderer.snapshot(s.snap);
+    const bool quick = renderer.quick_snapshot(s.quick);
+    if (!own && !quick) return false;
+    blend_for_display(s.snap, s.quick, s.applied.settings, s.shown);
+    upload_image();
+    if (!own) return true;
     s.triangles = s.snap.triangles;
     s.nodes = s.snap.bvh_nodes;
-    display.upload(s.snap, s.display.mode == 1);
+    // Numbers come from the generation's own passes only.
     s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();
     if (s.snap.generation != rse_generation) {
       s.rse_history.clear();
@@ -151,6 +120,17 @@ struct Session {
     if (!s.snap.preview && std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
     return true;
   }
+
+  // The image on the GPU: what is shown, or in the noise view the own
+  // passes (their sums of squares belong to their sums).
+  void upload_image() {
+    if (s.display.mode == 1)
+      display.upload(s.snap, true);
+    else
+      display.upload(s.shown.image, false);
+    uploaded_mode = s.display.mode == 1;
+  }
+  bool uploaded_mode = false;
 
   // Draws the panel, reads the keys and the mouse, and carries out what they
   // ask. Returns where the image goes.
@@ -183,7 +163,14 @@ struct Session {
     }
     // Image pixels per window unit, so a pan drags the scene with the mouse.
     const float image_scale = img_w > 0 ? rect.w / (f.fb_per_win * img_w) : 1.0f;
-    mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f);
+    update_room();
+    bool stopped = false;
+    mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f,
+                 room.get(), &stopped);
+    if (stopped) {
+      s.message = "the camera stopped at a surface";
+      s.message_is_error = false;
+    }
 
     ctl.carry_out(req, t0);
     if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
@@ -197,8 +184,30 @@ struct Session {
                          rect.h / f.fb_per_win};
     draw_image_overlays(s, image_area, opt.screenshot_path.empty());
     // Switching to the noise view needs the sums of squares on the GPU.
-    if (s.display.mode == 1 && !display.has_sq() && s.snap.spp) display.upload(s.snap, true);
+    if ((s.display.mode == 1) != uploaded_mode) upload_image();
     return rect;
+  }
+
+  // The World for the camera's rays follows the edited scene's geometry; the
+  // eye's place is checked whenever the applied camera changes.
+  void update_room() {
+    Scene geometry = s.edited;
+    geometry.camera = room_scene.camera;
+    geometry.light = room_scene.light;
+    geometry.settings = room_scene.settings;
+    if (!room || classify_change(room_scene, geometry) != SceneChange::None) {
+      room = std::make_unique<World>(s.edited, room.get());
+      room_scene = s.edited;
+      room_checked_camera = Camera{};
+      room_checked_camera.width = -1;  // checked again below
+    }
+    const Camera& c = s.applied.camera;
+    if (c.position != room_checked_camera.position || c.look_at != room_checked_camera.look_at ||
+        c.width != room_checked_camera.width) {
+      room_checked_camera = c;
+      std::string why;
+      s.eye_outside = eye_inside_room(c, *room, &why) ? std::string() : why;
+    }
   }
 
   // A debug view follows the applied scene (camera moves included).
@@ -211,11 +220,13 @@ struct Session {
     debug_display.upload(s.debug.image, false);
   }
 
+  // The samples per pixel of the current settings' own passes, as the panel
+  // counts them (0 until the first lands).
   void update_title() {
-    if (s.snap.spp == title_spp) return;
-    title_spp = s.snap.spp;
-    const std::string title = "Whisker - " + s.scene_label + " - " +
-                              std::to_string(s.snap.spp) + " spp";
+    const std::uint64_t spp = s.snap.generation == s.generation ? s.snap.spp : 0;
+    if (spp == title_spp) return;
+    title_spp = spp;
+    const std::string title = "Whisker - " + s.scene_label + " - " + std::to_string(spp) + " spp";
     glfwSetWindowTitle(window, title.c_str());
   }
 
@@ -231,7 +242,8 @@ struct Session {
     } else if (held && s.compare == kCompareHeld) {
       held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
     } else {
-      display.draw(rect, f.fb_h, float(s.snap.spp), s.display);
+      const Snapshot& live = s.display.mode == 1 ? s.snap : s.shown.image;
+      display.draw(rect, f.fb_h, float(live.spp), s.display);
       if (held && s.compare == kCompareWipe)
         held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
     }
@@ -253,6 +265,29 @@ struct Session {
     }
   }
 
+  // The event log (--edit-log): a line when the settings change (an edit,
+  // scripted or by hand, t = the frame that made it) and a line per drawn
+  // frame after its swap: what the frame shows of which generation.
+  std::FILE* log = nullptr;
+  std::uint64_t logged_generation = 0;
+  void log_frame(double t0, double t_shown) {
+    if (!log) return;
+    if (s.generation != logged_generation) {
+      std::fprintf(log, "edit t=%.6f gen=%llu\n", t0, (unsigned long long)s.generation);
+      logged_generation = s.generation;
+    }
+    const bool own_current = s.snap.generation == s.generation;
+    std::fprintf(log,
+                 "frame t=%.6f gen=%llu shown_gen=%llu shown_quick=%llu shown_own=%llu own_gen=%llu "
+                 "own_spp=%llu own_passes=%llu rse=%.6g\n",
+                 t_shown, (unsigned long long)s.generation,
+                 (unsigned long long)s.shown.image.generation,
+                 (unsigned long long)s.shown.quick_spp, (unsigned long long)s.shown.own_spp,
+                 (unsigned long long)s.snap.generation, (unsigned long long)s.snap.spp,
+                 (unsigned long long)s.snap.passes, own_current ? s.rse : std::nan(""));
+    std::fflush(log);
+  }
+
   // Runs until the window closes or the scripted run is done; the exit code.
   int run() {
     int exit_code = 0;
@@ -270,14 +305,16 @@ struct Session {
       const PixelRect rect = panel_and_input(f, t0);
       // Without --screenshot the window stays open after --frames passes
       // (the target stops the render there).
-      const bool finish = !opt.screenshot_path.empty() && script.finished(s);
+      const bool finish =
+          (!opt.screenshot_path.empty() || !opt.event_log.empty()) && script.finished(s);
       update_title();
       render(f, rect);
 
       const double t_work = glfwGetTime();
-      if (finish && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
+      if (finish && !opt.screenshot_path.empty() && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
         exit_code = 2;  // an output that cannot be written, as headless
       glfwSwapBuffers(window);
+      log_frame(t0, glfwGetTime());
       record_timing(t0, t_work, glfwGetTime(), finish);
       if (finish) break;
     }
@@ -360,9 +397,14 @@ int run_viewer(const ViewerOptions& opt) {
 
   ProgressiveRenderer renderer(opt.threads);
   s.threads = renderer.threads();
-  // A coarse preview (1/16 of a pass) shows an edit at once; it is never
-  // accumulated, so scripted runs and saves skip it.
-  renderer.set_preview(true);
+  // Quick passes show an edit at once (viewer/blend.h); they never enter the
+  // accumulation, so scripted runs compare with headless renders as before.
+  // A scripted screenshot compares with the headless render after its
+  // passes, so it shows the own passes alone.
+  renderer.set_preview(opt.screenshot_path.empty());
+  // A deterministic estimate is exact after one pass; a scripted run renders
+  // its --frames passes, as the headless mode with --frames does.
+  renderer.set_stop_when_exact(opt.frames <= 0);
   renderer.set_low_priority(true);  // the UI thread shares the two cores
   s.generation = renderer.set_scene(s.applied);
   renderer.start();
@@ -370,8 +412,17 @@ int run_viewer(const ViewerOptions& opt) {
 
   Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
                   kPanelWidth * imgui.ui_scale()};
+  if (!opt.event_log.empty()) {
+    session.log = std::fopen(opt.event_log.c_str(), "w");
+    if (!session.log) {
+      std::fprintf(stderr, "whisker: --edit-log %s: cannot write it\n", opt.event_log.c_str());
+      renderer.stop();
+      return 2;
+    }
+  }
   const int exit_code = session.run();
   session.print_summary();
+  if (session.log) std::fclose(session.log);
   renderer.stop();
   return exit_code;
 }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "scene/scene.h"
@@ -16,6 +17,8 @@ namespace whisker {
 struct ScriptedEdit {
   int after_pass = 0;
   std::optional<glm::dvec3> light_position;
+  std::optional<glm::dvec2> orbit;  // radians, as orbit() (a left drag)
+  std::string toggle;               // "indirect", "aa" or "fresnel": switched
 };
 
 struct ViewerOptions {
@@ -26,6 +29,9 @@ struct ViewerOptions {
   std::string screenshot_path;   // with frames: save the window framebuffer here
   std::vector<ScriptedEdit> edits;
   int width = 0, height = 0;     // window size (0 = fit the image plus panel)
+  // A line per edit and per drawn frame (times, generations, samples) goes
+  // here; with --frames the window then closes when the script is done.
+  std::string event_log;
 };
 
 // True if a window can be opened (a display is there and GLFW initialises).

@@ -7,6 +7,7 @@
 
 #include "render/progressive.h"
 #include "scene/scene.h"
+#include "viewer/blend.h"
 #include "viewer/debug_views.h"
 #include "viewer/display.h"
 #include "viewer/history.h"
@@ -58,7 +59,9 @@ struct ViewerState {
   std::uint64_t generation = 0;  // last generation asked for
   double last_change = 0.0;      // glfwGetTime() of the last edit
 
-  Snapshot snap;
+  Snapshot snap;   // the generation's own passes (what headless writes)
+  Snapshot quick;  // the quick passes after an edit (ProgressiveRenderer::set_preview)
+  Shown shown;     // what the window draws and S saves: snap, quick, or both combined
   ProgressiveRenderer::PassProgress progress;  // the pass in flight
   double rse = 0.0;  // relative standard error of snap
   std::size_t triangles = 0;
@@ -72,9 +75,16 @@ struct ViewerState {
   EditHistory history;
   std::vector<Camera> bookmarks;
   std::string pending_load;  // a load waiting for "discard the edits?"
+  // The scene as last written by Save scene: its edits are kept, so loading
+  // another scene asks nothing while the applied scene is still this one.
+  Scene saved_scene;
+  bool have_saved_scene = false;
   std::string pending_mesh;  // with this OBJ for its meshes
 
   DebugImage debug;       // the debug view on screen (display.mode >= 2)
+  // Not empty when the applied camera's eye is outside the room or inside an
+  // object (eye_inside_room): the panel says so and offers Reset camera.
+  std::string eye_outside;
 
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"

@@ -17,6 +17,7 @@ namespace {
 std::string g_glfw_error;
 int g_redraw = 0;  // frames to draw because of input
 std::string g_dropped;  // the last file dropped on the window
+std::vector<KeyPress> g_key_presses;
 
 void on_glfw_error(int code, const char* text) {
   g_glfw_error = std::string(text ? text : "") + " (GLFW error " + std::to_string(code) + ")";
@@ -29,7 +30,12 @@ void install_redraw_callbacks(GLFWwindow* w) {
   glfwSetCursorPosCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
   glfwSetMouseButtonCallback(w, [](GLFWwindow*, int, int, int) { mark_redraw(); });
   glfwSetScrollCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
-  glfwSetKeyCallback(w, [](GLFWwindow*, int, int, int, int) { mark_redraw(); });
+  glfwSetKeyCallback(w, [](GLFWwindow*, int key, int, int action, int mods) {
+    // Every press, in order, even one released before the next frame:
+    // the shortcuts read these rather than ImGui's per-frame key state.
+    if (action == GLFW_PRESS || action == GLFW_REPEAT) g_key_presses.push_back({key, mods, action == GLFW_REPEAT});
+    mark_redraw();
+  });
   glfwSetCharCallback(w, [](GLFWwindow*, unsigned) { mark_redraw(); });
   glfwSetCursorEnterCallback(w, [](GLFWwindow*, int) { mark_redraw(); });
   glfwSetWindowFocusCallback(w, [](GLFWwindow*, int) { mark_redraw(); });
@@ -44,6 +50,18 @@ void install_redraw_callbacks(GLFWwindow* w) {
 }  // namespace
 
 const std::string& last_glfw_error() { return g_glfw_error; }
+
+std::vector<KeyPress> take_key_presses() {
+  std::vector<KeyPress> keys;
+  keys.swap(g_key_presses);
+  return keys;
+}
+
+void put_back_key_presses(const std::vector<KeyPress>& keys) {
+  if (keys.empty()) return;
+  g_key_presses.insert(g_key_presses.begin(), keys.begin(), keys.end());
+  mark_redraw();
+}
 
 std::string take_dropped_file() {
   std::string path;

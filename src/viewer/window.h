@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -72,6 +73,17 @@ class ImGuiSession {
 bool redraw_pending();
 // The file dropped on the window since the last call ("" if none).
 std::string take_dropped_file();
+
+// A key pressed (or repeating) in the window, from GLFW's key callback.
+struct KeyPress {
+  int key = 0, mods = 0;
+  bool repeat = false;
+};
+// The key presses since the last call, in order: none is lost when a key
+// goes down and up between two frames.
+std::vector<KeyPress> take_key_presses();
+// Puts presses back in front of the queue, for the next frame.
+void put_back_key_presses(const std::vector<KeyPress>& keys);
 void take_redraw();
 
 }  // namespace whisker
