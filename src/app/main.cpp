@@ -1,4 +1,5 @@
 // whisker: the viewer by default, or --headless renders.
+#include <cerrno>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -14,6 +15,9 @@
 #ifdef WHISKER_HAVE_VIEWER
 #include "viewer/viewer.h"
 #endif
+
+#include <fcntl.h>
+#include <unistd.h>
 
 using namespace whisker;
 
@@ -83,9 +87,25 @@ std::string missing_scene(const std::string& name) {
          list + (hint.empty() ? "" : "; did you mean --scene " + hint + "?");
 }
 
+// Descriptors 0, 1 and 2 open before anything else opens a file: a program
+// started with one closed (`2>&-`) would otherwise get it back from the next
+// open(2), which returns the lowest free descriptor (POSIX open(), "shall
+// return ... the lowest numbered unused file descriptor"), and its progress
+// lines or messages would land in an output file or the X connection. The
+// closed ones are opened on /dev/null; if even that fails there is no safe
+// way to go on.
+void ensure_standard_descriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int got = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+    if (got != fd) ::_exit(2);  // the lowest free one is fd; anything else is beyond repair
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_standard_descriptors();
   ignore_broken_pipes();
   if (argc > 1 && std::string(argv[1]) == "merge") {
     install_signal_handlers(false);
