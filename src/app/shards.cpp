@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
@@ -72,10 +74,13 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   if (cl.samples.empty()) {
     // --frames N: the render of N passes from the part's first sample.
     range = {done.begin, done.begin + total};
-  } else if (range.begin != done.end) {
+  } else if (range.begin != done.begin && range.begin != done.end) {
+    // The same command as the interrupted render (A = the part's first
+    // sample) or its continuation (A = where the part ends) both go on to B.
     return "--samples " + cl.samples + ": " + cl.resume + " holds samples " +
            ranges_to_string({done}) + ", so the resumed range must start at " +
-           std::to_string(done.end);
+           std::to_string(done.begin) + " (the same --samples as the part's render) or at " +
+           std::to_string(done.end) + " (its continuation)";
   } else {
     range.begin = done.begin;
   }
@@ -97,7 +102,12 @@ Checkpointer::Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t ge
                            std::string path, double seconds, const ShardPlan& plan)
     : renderer_(renderer), generation_(generation), path_(std::move(path)), seconds_(seconds),
       plan_(plan) {
-  if (seconds_ >= 0 && !path_.empty()) thread_ = std::thread([this] { run(); });
+  if (seconds_ < 0 || path_.empty()) return;
+  try {
+    thread_ = std::thread([this] { run(); });
+  } catch (const std::system_error& e) {  // EAGAIN: ulimit -u or -v
+    throw std::runtime_error("--checkpoint: cannot create its thread: " + e.code().message());
+  }
 }
 
 void Checkpointer::stop() {

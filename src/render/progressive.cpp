@@ -4,6 +4,10 @@
 #include <barrier>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -119,7 +123,30 @@ void ProgressiveRenderer::start() {
   }
   job_ = std::make_unique<Job>(threads_);
   running_ = true;
-  for (int i = 0; i < threads_; ++i) pool_.emplace_back([this, i] { worker_main(i); });
+  pool_.reserve(std::size_t(threads_));
+  for (int i = 0; i < threads_; ++i) {
+    try {
+      pool_.emplace_back([this, i] { worker_main(i); });
+    } catch (const std::system_error& e) {
+      // pthread_create fails with EAGAIN under a process limit (ulimit -u)
+      // or when a thread's stack does not fit (ulimit -v). The barrier
+      // counts every thread asked for: those not created leave it
+      // (arrive_and_drop, [thread.barrier.class]), else the others wait there
+      // for ever. With none created there is nothing to render with.
+      const std::string why = e.code().message();
+      if (i == 0) {
+        job_.reset();
+        running_ = false;
+        throw std::runtime_error("cannot create a render thread: " + why +
+                                 " (limit of processes, ulimit -u, or of memory, ulimit -v)");
+      }
+      for (int k = i; k < threads_; ++k) job_->sync.arrive_and_drop();
+      std::fprintf(stderr, "whisker: warning: created %d of %d render threads (%s); rendering with %d\n",
+                   i, threads_, why.c_str(), i);
+      threads_ = i;
+      break;
+    }
+  }
 }
 
 void ProgressiveRenderer::stop() {
@@ -266,6 +293,11 @@ void ProgressiveRenderer::adopt_start(const RenderStart& start) {
   job.seconds = a.seconds;
 }
 
+bool ProgressiveRenderer::abandoning() const {
+  return quit_.load(std::memory_order_relaxed) ||
+         pending_generation_.load(std::memory_order_relaxed) != job_->generation;
+}
+
 void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
   const int tiles = job.tiles_x * job.tiles_y;
@@ -275,7 +307,7 @@ void ProgressiveRenderer::run_tiles() {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
-    if (quit_ || pending_generation_ != job.generation) job.aborted = true;
+    if (abandoning()) job.aborted = true;
     if (job.aborted) break;
     const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
@@ -323,6 +355,13 @@ std::uint64_t ProgressiveRenderer::run_blocks(int i0, int i1, int j0, int j1, Pa
       const int cols = bj1 - bj, pixels = (bi1 - bi) * cols;
       std::fill_n(sums, pixels, PixelSum{});
       for (int k = 0; k < job.pass_spp; ++k) {
+        // A stop or an edit is seen within one sample of a block, not at
+        // the next tile: a tile of a 65536-sample pass takes minutes. The
+        // pass is abandoned; the film's sums of it are never published.
+        if (abandoning()) {
+          job.aborted = true;
+          return nans;
+        }
         const std::uint64_t sample = job.sample_base + std::uint64_t(k);
         if (reuse) {
           sample_block(job.world, scene, *job.cam, bi, bi1, bj, bj1, sample, out, stats);

@@ -61,7 +61,10 @@ class ProgressiveRenderer {
   };
   PassProgress pass_progress() const;
 
-  void start();                 // launch the workers
+  // Launches the workers; with fewer threads if not all can be created (a
+  // warning on stderr; threads() says how many), throws std::runtime_error
+  // naming the cause if none can.
+  void start();
   void stop();                  // join them (a running pass is abandoned)
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
@@ -94,6 +97,7 @@ class ProgressiveRenderer {
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
   void run_tiles();
+  bool abandoning() const;  // a stop or an edit: the pass in flight is dropped
   std::uint64_t run_blocks(int i0, int i1, int j0, int j1, struct PathStats& stats);
   void end_pass();     // thread 0 only: merge and publish
   void adopt_start(const RenderStart& start);  // thread 0, at adoption
