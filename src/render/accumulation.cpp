@@ -66,6 +66,8 @@ std::string ranges_to_string(const std::vector<SampleRange>& ranges) {
 
 bool parse_ranges(const std::string& text, std::vector<SampleRange>& out) {
   std::vector<SampleRange> ranges;
+  // getline drops a trailing empty item: "0:5," would read as "0:5".
+  if (!text.empty() && text.back() == ',') return false;
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
