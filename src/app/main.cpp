@@ -9,6 +9,7 @@
 #include "app/cli.h"
 #include "app/headless.h"
 #include "app/merge.h"
+#include "app/shards.h"
 #include "app/signals.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
@@ -37,8 +38,18 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
+  // What will not fit is refused before anything is rendered.
+  const std::uint64_t bytes = render_memory(scene, !h.out_sum.empty(), bool(h.plan.start.resume));
+  const std::string doing = "rendering " + std::to_string(scene.camera.width) + " x " +
+                            std::to_string(scene.camera.height) + " pixels";
+  if (const std::string why = check_memory(doing, bytes); !why.empty()) return usage_error(why);
   install_signal_handlers(true);
-  return run_headless(h);
+  try {
+    return run_headless(h);
+  } catch (const std::bad_alloc&) {
+    return usage_error("out of memory while " + doing + " or writing its outputs: needs about " +
+                       std::to_string((bytes >> 20) + 1) + " MB");
+  }
 }
 
 int viewer(const CommandLine& cl, const Scene& scene) {

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -211,14 +212,46 @@ void ProgressiveRenderer::worker_main(int index) {
     ::setpriority(PRIO_PROCESS, tid, ::getpriority(PRIO_PROCESS, tid) + 5);
   }
   Job& job = *job_;
+  // Out of memory in a worker (the BVH, the film, a snapshot) ended the
+  // process in std::terminate: it stops the render instead, for failure().
+  const auto out_of_memory = [&](const char* doing) {
+    {
+      std::lock_guard lock(pending_mutex_);
+      if (failure_.empty()) failure_ = std::string("out of memory while ") + doing;
+      quit_ = true;
+    }
+    job.aborted = true;
+  };
   for (;;) {
-    if (index == 0) job.keep_going = begin_pass();
+    if (index == 0) {
+      try {
+        job.keep_going = begin_pass();
+      } catch (const std::bad_alloc&) {
+        out_of_memory("preparing the scene (its BVH and image buffers)");
+        job.keep_going = false;
+      }
+    }
     job.sync.arrive_and_wait();
     if (!job.keep_going) return;
-    run_tiles();
+    try {
+      run_tiles();
+    } catch (const std::bad_alloc&) {
+      out_of_memory("rendering");
+    }
     job.sync.arrive_and_wait();
-    if (index == 0) end_pass();
+    if (index == 0) {
+      try {
+        end_pass();
+      } catch (const std::bad_alloc&) {
+        out_of_memory("publishing a pass");
+      }
+    }
   }
+}
+
+std::string ProgressiveRenderer::failure() const {
+  std::lock_guard lock(pending_mutex_);
+  return failure_;
 }
 
 bool ProgressiveRenderer::begin_pass() {

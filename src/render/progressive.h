@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -89,6 +90,9 @@ class ProgressiveRenderer {
   // reached its target). Returns false if the renderer was stopped first.
   bool wait_for(std::uint64_t gen, std::uint64_t spp);
 
+  // Why the workers stopped on their own ("out of memory while ..."), or "".
+  std::string failure() const;
+
   // The scene currently being rendered (after adoption).
   Scene current_scene() const;
 
@@ -119,6 +123,7 @@ class ProgressiveRenderer {
   // between tiles without taking the lock.
   std::atomic<std::uint64_t> pending_generation_{0};
   std::atomic<bool> quit_{false};
+  std::string failure_;  // guarded by pending_mutex_
   // published snapshot, guarded by publish_mutex_
   mutable std::mutex publish_mutex_;
   std::condition_variable publish_cv_;
