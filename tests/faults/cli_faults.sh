@@ -744,18 +744,29 @@ PY
     ;;
   closed-standard-descriptors)
     # With stderr closed, the progress lines went into the checkpoint file
-    # that took descriptor 2; with stdout closed, the summary line went into
-    # whatever took descriptor 1.
+    # that took descriptor 2 (open(2) returns the lowest free one); with
+    # stdout closed, the viewer's X connection took descriptor 1. Closed
+    # standard descriptors are opened on /dev/null before anything else.
     have_exr || skip "this build has no OpenEXR"
     scene 64 64
-    "$bin" --headless --scene scene.json --spp 1 --frames 200 --progress 0.01 \
-      --out-sum sum.exr --checkpoint 0 --out-float img.pfm 2>&- >&- <&-
-    rc=$?
-    expect_rc 0
-    ! grep -aq 'spp' sum.exr img.pfm || fail "progress or summary text went into an output"
-    pfm_whole img.pfm 64 64
-    run merge sum.exr --out m.pfm
-    expect_rc 0
+    for closed in 0 1 2; do
+      # shellcheck disable=SC2016
+      env --default-signal=INT bash -c 'exec "$@" '"$closed"'>&-' - "$bin" --headless \
+        --scene scene.json --spp 1 --frames 1000000 --progress 0.01 --out-sum sum.exr \
+        --checkpoint 0 --out-float img.pfm 2>/dev/null </dev/null >/dev/null &
+      pid=$!
+      sleep 1.5
+      fd=$(readlink "/proc/$pid/fd/$closed")
+      kill -INT "$pid"
+      wait "$pid"
+      rc=$?
+      [ "$fd" = /dev/null ] || fail "descriptor $closed closed at the start is $fd, not /dev/null"
+      expect_rc 130
+      ! grep -aq 'spp' sum.exr img.pfm || fail "progress text went into an output"
+      pfm_whole img.pfm 64 64
+      run merge sum.exr --out m.pfm
+      expect_rc 0
+    done
     ;;
   memory-bounds)
     # A render that cannot fit ulimit -v is refused before it starts,
