@@ -95,7 +95,7 @@ constexpr std::uint32_t kMaxAttributeBytes = 1u << 20;
   };
   for (;;) {
     const std::string name = name_at(at);
-    if (name.empty()) return;  // the end of the header
+    if (name.empty()) break;  // the end of the header
     name_at(at);               // its type
     if (at + 4 > head.size()) bad("header cut short");
     const std::uint32_t size = u32(at);
@@ -108,6 +108,15 @@ constexpr std::uint32_t kMaxAttributeBytes = 1u << 20;
     if (at + size > head.size()) bad("header longer than 64 KB");
     at += size;
   }
+  // The line offset table follows, up to the first chunk: a file cut short
+  // (a copy that did not finish) has offsets past its end. Told here so that
+  // a merge names it before it compares the parts' headers.
+  const auto u64 = [&](std::size_t p) { return std::uint64_t(u32(p)) | (std::uint64_t(u32(p + 4)) << 32); };
+  if (at + 8 > head.size() || file_size < 0) return;
+  const std::uint64_t first = u64(at);
+  for (std::size_t p = at; p + 8 <= head.size() && p < first; p += 8)
+    if (u64(p) >= std::uint64_t(file_size))
+      throw AccumulationError(path + ": cannot read as OpenEXR: a line offset points past the end of the file (cut short?)");
 }
 
 }  // namespace
@@ -246,6 +255,11 @@ Accumulation read(const std::string& path, bool with_sums) {
                                   (ch->type == Imf::FLOAT ? "FLOAT" : "HALF") +
                                   ", not UINT (the words of a double); not written by whisker");
       }
+    // A file cut short (a copy that did not finish, a full disk): its line
+    // offsets point past its end. Told by the header pass too, before a
+    // merge checks ranges.
+    if (!file.isComplete())
+      throw AccumulationError(path + ": cannot read as OpenEXR: the file is incomplete");
     if (!with_sums) return acc;
     const std::size_t pixels = std::size_t(acc.width) * acc.height;
     std::vector<std::uint32_t> words[4];

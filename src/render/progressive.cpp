@@ -129,17 +129,14 @@ void ProgressiveRenderer::start() {
     try {
       pool_.emplace_back([this, i] { worker_main(i); });
     } catch (const std::system_error& e) {
-      // pthread_create fails with EAGAIN under a process limit (ulimit -u)
-      // or when a thread's stack does not fit (ulimit -v). The barrier
-      // counts every thread asked for: those not created leave it
-      // (arrive_and_drop, [thread.barrier.class]), else the others wait there
-      // for ever. With none created there is nothing to render with.
+      // EAGAIN under ulimit -u, or a stack past ulimit -v (pthread_create(3)).
+      // The threads not created leave the barrier (arrive_and_drop,
+      // [thread.barrier.class]), else the others wait there for ever.
       const std::string why = e.code().message();
       if (i == 0) {
         job_.reset();
         running_ = false;
-        throw std::runtime_error("cannot create a render thread: " + why +
-                                 " (limit of processes, ulimit -u, or of memory, ulimit -v)");
+        throw std::runtime_error("cannot create a render thread: " + why + " (limit of processes, ulimit -u, or of memory, ulimit -v)");
       }
       for (int k = i; k < threads_; ++k) job_->sync.arrive_and_drop();
       std::fprintf(stderr, "whisker: warning: created %d of %d render threads (%s); rendering with %d\n",
