@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <exception>
 #include <filesystem>
 
@@ -64,6 +65,20 @@ constexpr std::uint32_t kMaxAttributeBytes = 1u << 20;
 // and the value, until an empty name) before OpenEXR reads it: every size
 // must fit the file and kMaxAttributeBytes. Only single-part scanline files,
 // as write_accumulation writes them.
+// The bytes of the channel list at head[at...] as OpenEXR reads it: per
+// channel its name and 16 bytes (type, pLinear, reserved, sampling), then an
+// empty name. ~0u if it does not end within `size` bytes.
+std::uint32_t channel_list_size(const std::string& head, std::size_t at, std::uint32_t size) {
+  const std::size_t end = std::min(head.size(), at + std::size_t(size));
+  std::size_t p = at;
+  while (p < end && head[p] != '\0') {
+    const std::size_t z = head.find('\0', p);
+    if (z == std::string::npos || z >= end) return ~0u;
+    p = z + 1 + 16;
+  }
+  return p < end ? std::uint32_t(p + 1 - at) : ~0u;
+}
+
 [[maybe_unused]] void check_header_sizes(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw AccumulationError(path + ": cannot open: " + std::strerror(errno));
@@ -96,10 +111,21 @@ constexpr std::uint32_t kMaxAttributeBytes = 1u << 20;
   for (;;) {
     const std::string name = name_at(at);
     if (name.empty()) break;  // the end of the header
-    name_at(at);               // its type
+    const std::string type = name_at(at);
     if (at + 4 > head.size()) bad("header cut short");
     const std::uint32_t size = u32(at);
     at += 4;
+    // OpenEXR reads a typed value by its type, whatever the size says (a
+    // channel list up to its empty name, a box as 16 bytes): a size that
+    // disagrees sets it reading the rest of the header from elsewhere. Only
+    // the types a part holds, at the sizes their layout gives.
+    std::uint32_t expect = size;
+    if (type == "box2i" || type == "box2f" || type == "v2f") expect = type == "v2f" ? 8 : 16;
+    else if (type == "compression" || type == "lineOrder") expect = 1;
+    else if (type == "float") expect = 4;
+    else if (type == "chlist") expect = channel_list_size(head, at, size);
+    else if (type != "string") bad("header attribute " + cut(name) + " of type " + cut(type));
+    if (size != expect) bad("header attribute " + cut(name) + " of " + std::to_string(size) + " bytes");
     if (size > kMaxAttributeBytes || (file_size >= 0 && at + size > std::uint64_t(file_size)))
       throw AccumulationError(path + ": header attribute " + cut(name) + " claims " +
                               std::to_string(size) + " bytes, in a file of " +
