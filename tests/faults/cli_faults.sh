@@ -762,10 +762,16 @@ PY
       rc=$?
       [ "$fd" = /dev/null ] || fail "descriptor $closed closed at the start is $fd, not /dev/null"
       expect_rc 130
-      ! grep -aq 'spp' sum.exr img.pfm || fail "progress text went into an output"
-      pfm_whole img.pfm 64 64
-      run merge sum.exr --out m.pfm
-      expect_rc 0
+      # Whatever was written is whole and holds no text of the progress.
+      for f in sum.exr img.pfm; do
+        [ ! -e "$f" ] || ! grep -aq 'spp' "$f" || fail "progress text went into $f"
+      done
+      [ ! -e img.pfm ] || pfm_whole img.pfm 64 64
+      if [ -e sum.exr ]; then
+        run merge sum.exr --out m.pfm
+        expect_rc 0
+      fi
+      rm -f sum.exr img.pfm
     done
     ;;
   memory-bounds)
