@@ -46,7 +46,7 @@ sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$'
 tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase)\."
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
-sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay)
+sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay fuzz_part_replay)
 
 declare -A took
 timed() {

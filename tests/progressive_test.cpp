@@ -134,7 +134,7 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   scene.settings.split = {4, 4};
   scene.settings.reuse = 4;
   scene.settings.target_spp = 2;
-  ASSERT_TRUE(ProgressiveRenderer::quick_differs(scene.settings));
+  ASSERT_TRUE(cheap_differs(scene.settings));
   ProgressiveRenderer r(1);
   r.set_preview(true);
   const auto gen = r.set_scene(scene);
@@ -148,7 +148,7 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   r.snapshot(own);
   r.stop();
   Scene cheap = scene;
-  cheap.settings = ProgressiveRenderer::quick_settings(scene.settings);
+  cheap.settings = cheap_settings(scene.settings);
   cheap.settings.target_spp = 1;
   EXPECT_EQ(quick.sum, render(cheap, 1).sum);
   // No 4x4 blocks: most horizontal neighbours differ (each pixel its own path).
@@ -169,15 +169,15 @@ TEST(Progressive, QuickPassesOnlyWhenTheyAreCheaper) {
   s.indirect = false;
   s.spp = 1;
   s.split = {4, 4};
-  EXPECT_FALSE(ProgressiveRenderer::quick_differs(s));  // splitting needs indirect light
+  EXPECT_FALSE(cheap_differs(s));  // splitting needs indirect light
   s.spp = 4;
-  EXPECT_TRUE(ProgressiveRenderer::quick_differs(s));
+  EXPECT_TRUE(cheap_differs(s));
   s.spp = 1;
   s.indirect = true;
-  EXPECT_TRUE(ProgressiveRenderer::quick_differs(s));
+  EXPECT_TRUE(cheap_differs(s));
   s.split = {1};
   s.reuse = 1;
-  EXPECT_FALSE(ProgressiveRenderer::quick_differs(s));
+  EXPECT_FALSE(cheap_differs(s));
 }
 
 // A deterministic estimate (no indirect light, no jitter, no Fresnel choice)

@@ -193,7 +193,8 @@ TEST_F(Shards, BadMergesAndResumesAreRefusedNamingFilesAndField) {
   const std::pair<std::string, std::string> resumes[] = {
       {"--spp 2 --frames 2 --seed 7 --resume " + f("a.exr"), "settings.seed"},
       {"--spp 2 --frames 4 --resume " + f("p.exr"), "not one range"},
-      {"--spp 2 --samples 3:5 --resume " + f("a.exr"), "must start at 2"},
+      {"--spp 2 --samples 3:5 --resume " + f("a.exr"), "must start at 0 (the same --samples"},
+      {"--spp 2 --samples 1:5 --resume " + f("a.exr"), "or at 2 (its continuation)"},
       {"--spp 2 --samples 0:4 --frames 2", "drop --frames"},
       {"--spp 2 --samples 4:2", "expected A:B"},
       {"--spp 2 --samples 0:4 --out-sum " + f("x.pfm"), "must end in .exr"},
@@ -204,6 +205,61 @@ TEST_F(Shards, BadMergesAndResumesAreRefusedNamingFilesAndField) {
     EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
     EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
   }
+}
+
+TEST_F(Shards, ASampleRangeResumesWithTheSameCommandPlusResume) {
+  // A render of --samples 2:6 in passes of one sample, killed after its
+  // first checkpoint (which holds 2:3), goes on with the same command plus
+  // --resume, to the same bits as the render never killed.
+  render("--spp 1 --samples 2:6 --out-sum " + f("full.exr") + " --out-float " + f("full.pfm"));
+  render("--spp 1 --samples 2:3 --out-sum " + f("ck.exr"));
+  render("--spp 1 --samples 2:6 --resume " + f("ck.exr") + " --out-sum " + f("ck.exr") +
+         " --out-float " + f("resumed.pfm"));
+  const Accumulation full = read_accumulation(f("full.exr")), resumed = read_accumulation(f("ck.exr"));
+  EXPECT_EQ(resumed.ranges, (std::vector<SampleRange>{{2, 6}}));
+  EXPECT_TRUE(same_bits(full.sum, resumed.sum));
+  EXPECT_EQ(bytes(f("full.pfm")), bytes(f("resumed.pfm")));
+}
+
+TEST(AccumulationFile, DamagedSumsAndCountersAreRefusedNamingTheField) {
+  Accumulation a;
+  a.width = 2;
+  a.height = 1;
+  a.sum = {1, 2, 3, 4, 5, 6};
+  a.sum_sq = {1, 2};
+  a.ranges = {{0, 4}};
+  a.passes = 1;
+  a.id = {"room", "0123456789abcdef", R"({"seed":1})"};
+  const fs::path p = fs::temp_directory_path() / ("whisker-bad-" + std::to_string(::getpid()) + ".exr");
+  const auto refusal = [&](const Accumulation& bad) {
+    write_accumulation(p.string(), bad);
+    try {
+      read_accumulation(p.string());
+    } catch (const AccumulationError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(read)");
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const double v : {nan, inf, -inf, -1.0}) {
+    Accumulation b = a;
+    b.sum[4] = v;  // G of pixel (1, 0)
+    EXPECT_NE(refusal(b).find("sum.G of pixel (1, 0)"), std::string::npos) << refusal(b);
+    b = a;
+    b.sum_sq[0] = v;
+    EXPECT_NE(refusal(b).find("sumsq.Y of pixel (0, 0)"), std::string::npos) << refusal(b);
+  }
+  Accumulation b = a;
+  b.seconds = nan;
+  EXPECT_NE(refusal(b).find("whisker.seconds \"nan\""), std::string::npos) << refusal(b);
+  b.seconds = -2;
+  EXPECT_NE(refusal(b).find("whisker.seconds \"-2\""), std::string::npos) << refusal(b);
+  EXPECT_EQ(refusal(a), "(read)");
+  fs::remove(p);
+  std::vector<SampleRange> r;
+  for (const char* bad : {"0:5,", "0:5,,6:7", ",0:5", "0:5, 6:7"}) EXPECT_FALSE(parse_ranges(bad, r)) << bad;
+  EXPECT_TRUE(parse_ranges("0:5,6:7", r));
 }
 
 TEST(AccumulationFile, RoundTripKeepsEveryBitAndTheHeader) {

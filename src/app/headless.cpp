@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "app/shards.h"
 #include "app/signals.h"
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
@@ -96,7 +97,7 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
 void wait_for_target(const ProgressiveRenderer& renderer, std::uint64_t gen,
                      std::uint64_t target) {
   Snapshot s;
-  while (!interrupt_signal()) {
+  while (!interrupt_signal() && renderer.failure().empty()) {
     renderer.snapshot(s);  // copies only when a new pass was published
     if (s.generation == gen && !s.preview && (s.spp >= target || s.done)) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -210,7 +211,7 @@ int run_headless(const HeadlessOptions& o) {
     }
     renderer.snapshot(snap);
     if (snap.generation == gen && (snap.spp >= target || snap.done)) break;
-    if (interrupt_signal()) break;
+    if (interrupt_signal() || !renderer.failure().empty()) break;
     const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     progress.update(el, snap, gen, renderer.pass_progress());
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -219,6 +220,11 @@ int run_headless(const HeadlessOptions& o) {
   checkpoints.stop();
   progress.finish();
 
+  if (const std::string why = renderer.failure(); !why.empty()) {
+    std::fprintf(stderr, "whisker: %s: needs about %llu MB; nothing written\n", why.c_str(),
+                 (unsigned long long)((render_memory(scene, !o.out_sum.empty(), bool(o.plan.start.resume)) >> 20) + 1));
+    return 2;
+  }
   if (interrupt_signal()) {
     renderer.snapshot(snap);  // the last pass completed before the stop
     return finish_interrupted(o, scene, snap, gen, renderer.threads());

@@ -1,4 +1,5 @@
 // whisker: the viewer by default, or --headless renders.
+#include <cerrno>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -8,12 +9,16 @@
 #include "app/cli.h"
 #include "app/headless.h"
 #include "app/merge.h"
+#include "app/shards.h"
 #include "app/signals.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #ifdef WHISKER_HAVE_VIEWER
 #include "viewer/viewer.h"
 #endif
+
+#include <fcntl.h>
+#include <unistd.h>
 
 using namespace whisker;
 
@@ -35,8 +40,18 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.one_pass_if_exact =
       cl.frames <= 0 && !given(cl, "--target-spp") && cl.samples.empty() && cl.resume.empty();
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
+  // What will not fit is refused before anything is rendered.
+  const std::uint64_t bytes = render_memory(scene, !h.out_sum.empty(), bool(h.plan.start.resume));
+  const std::string doing = "rendering " + std::to_string(scene.camera.width) + " x " +
+                            std::to_string(scene.camera.height) + " pixels";
+  if (const std::string why = check_memory(doing, bytes); !why.empty()) return usage_error(why);
   install_signal_handlers(true);
-  return run_headless(h);
+  try {
+    return run_headless(h);
+  } catch (const std::bad_alloc&) {
+    return usage_error("out of memory while " + doing + " or writing its outputs: needs about " +
+                       std::to_string((bytes >> 20) + 1) + " MB");
+  }
 }
 
 int viewer(const CommandLine& cl, const Scene& scene) {
@@ -99,9 +114,25 @@ std::string missing_scene(const std::string& name) {
          list + (hint.empty() ? "" : "; did you mean --scene " + hint + "?");
 }
 
+// Descriptors 0, 1 and 2 open before anything else opens a file: a program
+// started with one closed (`2>&-`) would otherwise get it back from the next
+// open(2), which returns the lowest free descriptor (POSIX open(), "shall
+// return ... the lowest numbered unused file descriptor"), and its progress
+// lines or messages would land in an output file or the X connection. The
+// closed ones are opened on /dev/null; if even that fails there is no safe
+// way to go on.
+void ensure_standard_descriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int got = ::open("/dev/null", fd == 0 ? O_RDONLY : O_WRONLY);
+    if (got != fd) ::_exit(2);  // the lowest free one is fd; anything else is beyond repair
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  ensure_standard_descriptors();
   ignore_broken_pipes();
   if (argc > 1 && std::string(argv[1]) == "merge") {
     install_signal_handlers(false);

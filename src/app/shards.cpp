@@ -5,10 +5,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 
+#include "geometry/mesh.h"
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
+
+#include <sys/resource.h>
+#include <sys/sysinfo.h>
+#include <unistd.h>
 
 namespace whisker {
 
@@ -38,6 +45,51 @@ std::string check_resume(const std::string& path, const Scene& scene, const Rend
 }
 
 }  // namespace
+
+std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume) {
+  const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
+  // The film's double sums (32), two float snapshots (20 each), three
+  // output images (12 each); with --out-sum the exact sums in both
+  // snapshots, the checkpoint's copy and its file's words and mean; with
+  // --resume the part read.
+  std::uint64_t per_pixel = 32 + 2 * 20 + 3 * 12;
+  if (out_sum) per_pixel += 2 * 32 + 52 + 52 + 32 + 12;
+  if (resume) per_pixel += 32;
+  std::uint64_t bytes = pixels * per_pixel;
+  for (const MeshObject& m : scene.meshes)
+    if (m.mesh)  // the mesh and about as much again for its BVH and world copy
+      bytes += 2 * (m.mesh->positions.size() * sizeof(m.mesh->positions[0]) +
+                    m.mesh->triangles.size() * (sizeof(m.mesh->triangles[0]) + 64) +
+                    m.mesh->normals.size() * sizeof(m.mesh->normals[0]) +
+                    m.mesh->normal_idx.size() * sizeof(m.mesh->normal_idx[0]));
+  return bytes;
+}
+
+std::string check_memory(const std::string& doing, std::uint64_t bytes) {
+  const auto mb = [](std::uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MB"; };
+  struct rlimit lim {};
+  if (::getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) {
+    // What is mapped now: the first field of /proc/self/statm, in pages (proc(5)).
+    std::uint64_t mapped = 0;
+    if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
+      unsigned long long pages = 0;
+      if (std::fscanf(f, "%llu", &pages) == 1) mapped = pages * std::uint64_t(::sysconf(_SC_PAGESIZE));
+      std::fclose(f);
+    }
+    const std::uint64_t left = lim.rlim_cur > mapped ? lim.rlim_cur - mapped : 0;
+    if (bytes > left)
+      return "not enough memory for " + doing + ": needs about " + mb(bytes) +
+             ", and the memory limit (ulimit -v) leaves " + mb(left);
+  }
+  struct sysinfo si {};
+  if (::sysinfo(&si) == 0) {
+    const std::uint64_t total = (std::uint64_t(si.totalram) + si.totalswap) * si.mem_unit;
+    if (total > 0 && bytes > total)
+      return "not enough memory for " + doing + ": needs about " + mb(bytes) +
+             ", and this machine has " + mb(total) + " of RAM and swap";
+  }
+  return {};
+}
 
 std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan) {
   plan = {};
@@ -72,10 +124,13 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   if (cl.samples.empty()) {
     // --frames N: the render of N passes from the part's first sample.
     range = {done.begin, done.begin + total};
-  } else if (range.begin != done.end) {
+  } else if (range.begin != done.begin && range.begin != done.end) {
+    // The same command as the interrupted render (A = the part's first
+    // sample) or its continuation (A = where the part ends) both go on to B.
     return "--samples " + cl.samples + ": " + cl.resume + " holds samples " +
            ranges_to_string({done}) + ", so the resumed range must start at " +
-           std::to_string(done.end);
+           std::to_string(done.begin) + " (the same --samples as the part's render) or at " +
+           std::to_string(done.end) + " (its continuation)";
   } else {
     range.begin = done.begin;
   }
@@ -97,7 +152,12 @@ Checkpointer::Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t ge
                            std::string path, double seconds, const ShardPlan& plan)
     : renderer_(renderer), generation_(generation), path_(std::move(path)), seconds_(seconds),
       plan_(plan) {
-  if (seconds_ >= 0 && !path_.empty()) thread_ = std::thread([this] { run(); });
+  if (seconds_ < 0 || path_.empty()) return;
+  try {
+    thread_ = std::thread([this] { run(); });
+  } catch (const std::system_error& e) {  // EAGAIN: ulimit -u or -v
+    throw std::runtime_error("--checkpoint: cannot create its thread: " + e.code().message());
+  }
 }
 
 void Checkpointer::stop() {

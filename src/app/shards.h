@@ -29,6 +29,19 @@ struct ShardPlan {
 // naming the option or file and the field.
 std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan);
 
+// Memory a render or a merge needs, checked before it starts (docs/RELIABILITY.md):
+// bytes per pixel of a merge (the sum, one part and its words as read, the
+// outputs' copies).
+constexpr std::uint64_t kMergeBytesPerPixel = 32 + 32 + 32 + 2 * 52 + 12 + 32;
+// About how many bytes a headless render of `scene` needs: its image
+// buffers (film, published and copied snapshots, output images; more with
+// --out-sum and --resume) and its meshes with their BVH.
+std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume);
+// "" if `bytes` more fit under the memory limit (ulimit -v: RLIMIT_AS less
+// what the process maps now) and in the machine (RAM and swap); else what
+// does not fit, naming `doing` and both figures in MB.
+std::string check_memory(const std::string& doing, std::uint64_t bytes);
+
 // --checkpoint: while a headless render runs, writes its latest finished pass
 // to the --out-sum file at most every `seconds` (0: after every pass), so a
 // render that is killed resumes from there with --resume. A thread of its

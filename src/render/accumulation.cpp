@@ -66,6 +66,8 @@ std::string ranges_to_string(const std::vector<SampleRange>& ranges) {
 
 bool parse_ranges(const std::string& text, std::vector<SampleRange>& out) {
   std::vector<SampleRange> ranges;
+  // getline drops a trailing empty item: "0:5," would read as "0:5".
+  if (!text.empty() && text.back() == ',') return false;
   std::istringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
@@ -163,7 +165,7 @@ std::string identity_mismatch(const Accumulation& a, const Accumulation& b) {
   return "settings: " + a.id.settings + " vs " + b.id.settings;
 }
 
-Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
+Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order) {
   if (parts.empty()) throw AccumulationError("nothing to merge");
   for (std::size_t i = 1; i < parts.size(); ++i)
     if (const std::string why = identity_mismatch(parts[0].acc, parts[i].acc); !why.empty())
@@ -174,8 +176,10 @@ Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
     const std::string* name;
   };
   std::vector<Owned> all;
-  for (const auto& p : parts)
+  for (const auto& p : parts) {
+    if (p.acc.ranges.empty()) throw AccumulationError(p.name + ": holds no samples");
     for (const SampleRange& r : p.acc.ranges) all.push_back({r, &p.name});
+  }
   std::sort(all.begin(), all.end(), [](const Owned& x, const Owned& y) { return x.r.begin < y.r.begin; });
   for (std::size_t i = 1; i < all.size(); ++i)
     if (all[i].r.begin < all[i - 1].r.end)
@@ -183,19 +187,16 @@ Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
                               *all[i - 1].name + " overlap samples " +
                               ranges_to_string({all[i].r}) + " of " + *all[i].name);
   // Fold in range order (the exactness rule in the header).
-  std::stable_sort(parts.begin(), parts.end(), [](const auto& x, const auto& y) {
-    return x.acc.ranges.front().begin < y.acc.ranges.front().begin;
+  order.resize(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+    return parts[x].acc.ranges.front().begin < parts[y].acc.ranges.front().begin;
   });
   Accumulation out;
-  const Accumulation& first = parts[0].acc;
-  out.width = first.width;
-  out.height = first.height;
-  out.id = first.id;
-  out.sum.assign(first.sum.size(), 0.0);
-  out.sum_sq.assign(first.sum_sq.size(), 0.0);
+  out.width = parts[0].acc.width;
+  out.height = parts[0].acc.height;
+  out.id = parts[0].acc.id;
   for (const auto& p : parts) {
-    for (std::size_t k = 0; k < out.sum.size(); ++k) out.sum[k] += p.acc.sum[k];
-    for (std::size_t k = 0; k < out.sum_sq.size(); ++k) out.sum_sq[k] += p.acc.sum_sq[k];
     out.passes += p.acc.passes;
     out.nan_count += p.acc.nan_count;
     out.rays += p.acc.rays;
@@ -208,6 +209,25 @@ Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
     else
       out.ranges.push_back(o.r);
   }
+  return out;
+}
+
+void add_sums(Accumulation& into, const Accumulation& part) {
+  const std::size_t pixels = std::size_t(into.width) * std::size_t(into.height);
+  if (into.sum.empty()) {  // the first part: the fold starts from zero
+    into.sum.assign(pixels * 3, 0.0);
+    into.sum_sq.assign(pixels, 0.0);
+  }
+  if (part.sum.size() != into.sum.size() || part.sum_sq.size() != into.sum_sq.size())
+    throw AccumulationError("a part's sums are not of the merge's size");
+  for (std::size_t k = 0; k < into.sum.size(); ++k) into.sum[k] += part.sum[k];
+  for (std::size_t k = 0; k < into.sum_sq.size(); ++k) into.sum_sq[k] += part.sum_sq[k];
+}
+
+Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {
+  std::vector<std::size_t> order;
+  Accumulation out = plan_merge(parts, order);
+  for (const std::size_t i : order) add_sums(out, parts[i].acc);
   return out;
 }
 

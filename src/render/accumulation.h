@@ -80,6 +80,12 @@ struct NamedAccumulation {
 // AccumulationError naming the files and the differing field, or the two
 // overlapping ranges.
 Accumulation merge_accumulations(std::vector<NamedAccumulation> parts);
+// The same in steps, so that a merge holds one part's sums at a time:
+// plan_merge checks the parts' headers (their sums may be empty) and returns
+// the merged header with empty sums, and in `order` the order to add the
+// parts' sums in with add_sums (from zero, as merge_accumulations does).
+Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order);
+void add_sums(Accumulation& into, const Accumulation& part);
 // The ranges missing from [0, last end): the gaps between `ranges`.
 std::vector<SampleRange> missing_ranges(const std::vector<SampleRange>& ranges);
 

@@ -14,6 +14,9 @@ namespace whisker {
 // path if it cannot (or if the build has no OpenEXR).
 void write_accumulation(const std::string& path, const Accumulation& acc);
 // Throws AccumulationError naming the path and what is wrong.
+// Its sums are checked: finite and >= 0, from UINT word channels.
 Accumulation read_accumulation(const std::string& path);
+// The same without the sums (left empty): size, ranges, identity, counters.
+Accumulation read_accumulation_header(const std::string& path);
 
 }  // namespace whisker

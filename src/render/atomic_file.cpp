@@ -1,6 +1,10 @@
 #include "render/atomic_file.h"
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -9,6 +13,7 @@
 #include <functional>
 
 #include <fcntl.h>
+#include <sys/random.h>
 #include <unistd.h>
 
 #include "render/image_io.h"
@@ -64,48 +69,35 @@ class ListedTemp {
 
 std::string error_text(const char* fallback) { return errno ? std::strerror(errno) : fallback; }
 
-// fsync(2) of a file a writer wrote by name; errno set on failure.
-bool sync_file(const std::string& name) {
-  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool ok = ::fsync(fd) == 0;
-  const int saved = errno;
-  if (::close(fd) != 0) return false;
-  errno = saved;
-  return ok;
-}
-
-// The whole of `bytes` into a new file `name`: every write(2), the fsync(2)
-// and the close(2) checked (a full disk may show at any of them).
-bool write_all(const std::string& name, std::string_view bytes) {
-  const int fd = ::open(name.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (fd < 0) return false;
-  const char* p = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      if (n == 0) errno = EIO;
-      break;
+// Random letters for a temporary file's name, from getrandom(2); if that
+// fails (a kernel before 3.17, a seccomp filter), from the clock, the pid and
+// a counter: names that still differ, and O_EXCL makes a clash an EEXIST.
+std::string random_letters(std::size_t n) {
+  static const char kAlphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  unsigned char bytes[32] = {};
+  n = std::min(n, sizeof bytes);
+  if (::getrandom(bytes, n, GRND_NONBLOCK) != ssize_t(n)) {
+    static std::atomic<std::uint64_t> counter{0};
+    std::uint64_t x = std::uint64_t(std::chrono::steady_clock::now().time_since_epoch().count()) ^
+                      (std::uint64_t(::getpid()) << 32) ^ (counter.fetch_add(1) * 0x9e3779b97f4a7c15ull);
+    for (std::size_t i = 0; i < n; ++i) {
+      x ^= x >> 29;
+      x *= 0xbf58476d1ce4e5b9ull;
+      bytes[i] = static_cast<unsigned char>(x >> 56);
     }
-    p += n;
-    left -= std::size_t(n);
   }
-  bool ok = left == 0 && ::fsync(fd) == 0;
-  const int saved = errno;
-  if (::close(fd) != 0) return false;
-  errno = saved;
-  return ok;
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) out += kAlphabet[bytes[i] % (sizeof kAlphabet - 1)];
+  return out;
 }
 
-// ".NAME.tmp-PID" beside the target, so the rename stays on one file system.
-// It must itself be a legal name: for a NAME near NAME_MAX (255 bytes) only
-// its start is kept, with a hash of the whole so two long names that share
-// a start still differ.
+// ".NAME.tmp-RANDOM" beside the target, so the rename stays on one file
+// system. It must itself be a legal name: for a NAME near NAME_MAX (255
+// bytes) only its start is kept, with a hash of the whole so two long names
+// that share a start still differ.
 std::string temp_name(const std::string& name) {
   constexpr std::size_t kNameMaxBytes = NAME_MAX;
-  const std::string suffix = ".tmp-" + std::to_string(::getpid());
+  const std::string suffix = ".tmp-" + random_letters(12);
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + s.
   std::string out(1, '.');
   if (1 + name.size() + suffix.size() <= kNameMaxBytes) {
@@ -119,26 +111,118 @@ std::string temp_name(const std::string& name) {
   return out;
 }
 
-void commit(const std::string& path, const std::function<bool(const std::string&)>& writer,
-            bool synced) {
+// The file being written. Where the file system allows, an unnamed file
+// (open(2) O_TMPFILE in the target's folder): nothing to see or to leave
+// behind until it is complete. Else a new name made with O_CREAT | O_EXCL
+// (never an existing file) and O_NOFOLLOW (never through a symbolic link
+// planted there), listed for the signal handlers.
+class TempFile {
+ public:
+  explicit TempFile(const fs::path& dir, const std::string& target_name)
+      : dir_(dir), target_name_(target_name) {
+    // O_TMPFILE needs O_WRONLY or O_RDWR; EOPNOTSUPP / EISDIR / EINVAL where
+    // the file system or the kernel lacks it (open(2), "O_TMPFILE").
+    fd_ = ::open(dir.c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+    if (fd_ >= 0 && ::access(proc_name().c_str(), F_OK) != 0) {  // no /proc to link it by
+      ::close(fd_);
+      fd_ = -1;
+    }
+    if (fd_ >= 0) return;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+      name_ = (dir / temp_name(target_name)).string();
+      listed_ = std::make_unique<ListedTemp>(name_);
+      fd_ = ::open(name_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+      if (fd_ >= 0 || errno != EEXIST) break;
+    }
+    if (fd_ < 0) name_.clear();
+  }
+  ~TempFile() {
+    if (!name_.empty()) ::unlink(name_.c_str());
+    if (fd_ >= 0) ::close(fd_);
+  }
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+
+  int fd() const { return fd_; }
+  // A name that opens this very file whatever happens in the folder: its
+  // /proc/self/fd link (proc(5): opening it opens the file itself, even an
+  // unnamed one), else (no /proc) its own name.
+  std::string writer_name() const {
+    const std::string p = proc_name();
+    return ::access(p.c_str(), F_OK) == 0 || name_.empty() ? p : name_;
+  }
+  // Renames the complete file onto `target`: an unnamed file is first
+  // linked to a new unique name (linkat(2) AT_SYMLINK_FOLLOW on its
+  // /proc/self/fd link; a link cannot replace a file, rename(2) can, in one
+  // step). errno set on failure.
+  bool publish(const std::string& target) {
+    if (name_.empty()) {
+      for (int attempt = 0; attempt < 100 && name_.empty(); ++attempt) {
+        const std::string name = (dir_ / temp_name(target_name_)).string();
+        listed_ = std::make_unique<ListedTemp>(name);
+        if (::linkat(AT_FDCWD, proc_name().c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0)
+          name_ = name;
+        else if (errno != EEXIST)
+          return false;
+      }
+      if (name_.empty()) return false;
+    }
+    if (::rename(name_.c_str(), target.c_str()) != 0) return false;
+    name_.clear();  // it is the target now
+    return true;
+  }
+
+ private:
+  std::string proc_name() const { return "/proc/self/fd/" + std::to_string(fd_); }
+
+  fs::path dir_;
+  std::string target_name_;
+  std::string name_;  // "" while unnamed
+  int fd_ = -1;
+  std::unique_ptr<ListedTemp> listed_;
+};
+
+// The whole of `bytes` to `fd`: every write(2) checked (a full disk may
+// show at any of them); errno set on failure.
+bool write_all(int fd, std::string_view bytes) {
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      if (n == 0) errno = EIO;
+      return false;
+    }
+    p += n;
+    left -= std::size_t(n);
+  }
+  return true;
+}
+
+// Runs `writer` on a fresh temporary file beside `path`: to its descriptor
+// (by_fd) or to a name that opens it. Then fsync(2) and the rename; the
+// temporary file never outlives the call.
+void commit(const std::string& path, const std::function<bool(const std::string&)>& by_name,
+            const std::function<bool(int)>& by_fd) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail(path, "folder " + dir.string() + " does not exist");
   if (const std::string why = not_replaceable(path); !why.empty()) fail(path, why);
-  const std::string tmp = (dir / temp_name(target.filename().string())).string();
-  const ListedTemp listed(tmp);
+  TempFile tmp(dir, target.filename().string());
+  if (tmp.fd() < 0) fail(path, error_text("cannot create a temporary file"));
   errno = 0;  // so a failure's reason is the writer's, not an older one
   std::string why;
-  if (!writer(tmp)) why = error_text("write failed");
-  else if (!synced && !sync_file(tmp)) why = error_text("fsync failed");
+  const bool written = by_fd ? by_fd(tmp.fd()) : by_name(tmp.writer_name());
+  if (!written) why = error_text("write failed");
+  // fsync on any descriptor of the file flushes the file (fsync(2)): the
+  // writer's own, closed by now, wrote to the same file.
+  else if (::fsync(tmp.fd()) != 0) why = error_text("fsync failed");
   // The target may have become something else while the file was written.
   if (why.empty()) why = not_replaceable(path);
-  if (why.empty() && ::rename(tmp.c_str(), path.c_str()) != 0) why = error_text("rename failed");
-  if (!why.empty()) {
-    ::unlink(tmp.c_str());
-    fail(path, why);
-  }
+  if (why.empty() && !tmp.publish(path)) why = error_text("rename failed");
+  if (!why.empty()) fail(path, why);
 }
 
 }  // namespace
@@ -168,11 +252,11 @@ std::string not_replaceable(const std::string& path) {
 
 void write_file_atomically(const std::string& path,
                            const std::function<bool(const std::string&)>& writer) {
-  commit(path, writer, false);
+  commit(path, writer, nullptr);
 }
 
 void write_bytes_atomically(const std::string& path, std::string_view bytes) {
-  commit(path, [&](const std::string& tmp) { return write_all(tmp, bytes); }, true);
+  commit(path, nullptr, [&](int fd) { return write_all(fd, bytes); });
 }
 
 void remove_temp_files_now() noexcept {

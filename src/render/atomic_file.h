@@ -1,7 +1,9 @@
-// Output files written whole or not at all: every writer produces a
-// temporary file ".NAME.tmp-PID" beside its target, checks every write, the
-// fsync and the close, and renames it into place only then. The temporary
-// files in progress are listed so that a signal handler can remove them.
+// Output files written whole or not at all: every writer writes a new
+// temporary file beside its target (unnamed, O_TMPFILE, where the file
+// system allows; else ".NAME.tmp-RANDOM", created exclusively, never through
+// a symbolic link), checks every write and the fsync, and the file is renamed
+// into place only then. Named temporary files in progress are listed so
+// that a signal handler can remove them.
 #pragma once
 
 #include <functional>
@@ -15,9 +17,11 @@ namespace whisker {
 // symbolic link to one), which the rename would replace.
 std::string not_replaceable(const std::string& path);
 
-// Runs writer(temporary path) beside `path`, syncs the result to disk and
-// renames it onto `path`; on any failure removes the temporary file and
-// throws ImageError "PATH: cannot write: REASON".
+// Runs writer(name) beside `path`, where opening `name` (O_TRUNC is fine)
+// opens the new temporary file itself (a /proc/self/fd link, or its own
+// name without /proc); syncs the result to disk and renames it onto `path`;
+// on any failure removes the temporary file and throws ImageError
+// "PATH: cannot write: REASON".
 void write_file_atomically(const std::string& path,
                            const std::function<bool(const std::string&)>& writer);
 

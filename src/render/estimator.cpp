@@ -4,13 +4,44 @@
 
 namespace whisker {
 
-std::uint64_t render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
-                          Film& film) {
+bool deterministic_estimate(const Scene& scene) {
+  const RenderSettings& s = scene.settings;
+  if (s.indirect || s.aa) return false;
+  if (!s.fresnel) return true;
+  for (const SphereObject& sp : scene.spheres)
+    if (is_glass(sp.material.kind)) return false;
+  for (const MeshObject& m : scene.meshes)
+    if (is_glass(m.material.kind)) return false;
+  return true;
+}
+
+bool cheap_differs(const RenderSettings& s) {
+  if (s.spp > 1) return true;
+  if (!s.indirect) return false;  // splitting and reuse act on indirect paths only
+  if (reuses_paths(s)) return true;
+  for (int f : s.split)
+    if (f > 1) return true;
+  return false;
+}
+
+RenderSettings cheap_settings(const RenderSettings& s) {
+  RenderSettings q = s;
+  q.spp = 1;
+  q.split = {1};
+  q.split_weights = vec3(1.0f);
+  q.reuse = 1;
+  // Samples independent of the generation's own (which use `seed`).
+  q.seed = s.seed ^ 0x9e3779b97f4a7c15ull;
+  return q;
+}
+
+TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
+                       Film& film) {
   const RenderSettings& s = ctx.settings;
   const PixelBlock& t = tile.pixels;
   const bool reuse = reuses_paths(s);
   const int side = reuse ? std::min(s.reuse, kMaxReuseBlock) : 1;
-  std::uint64_t nans = 0;
+  TileResult result;
   // Once per tile, not per block: a pixel by itself clears one sum, not 64.
   PixelSum sums[kMaxReuseBlock * kMaxReuseBlock];
   vec3 out[kMaxReuseBlock * kMaxReuseBlock];
@@ -20,6 +51,10 @@ std::uint64_t render_tile(const PathContext& ctx, const CameraFrame& cam, const 
       const int cols = block.j1 - block.j0, pixels = (block.i1 - block.i0) * cols;
       std::fill_n(sums, pixels, PixelSum{});
       for (int k = 0; k < tile.spp; ++k) {
+        if (tile.abandon && tile.abandon()) {
+          result.abandoned = true;
+          return result;
+        }
         const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
         if (reuse) {
           sample_block(ctx, cam, block, sample, out);
@@ -32,11 +67,11 @@ std::uint64_t render_tile(const PathContext& ctx, const CameraFrame& cam, const 
       for (int p = 0; p < pixels; ++p) {
         const int i = bi + p / cols, j = bj + p % cols;
         film.add(std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j), sums[p]);
-        nans += sums[p].dropped;
+        result.dropped += sums[p].dropped;
       }
     }
   }
-  return nans;
+  return result;
 }
 
 }  // namespace whisker

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "render/camera.h"
 #include "render/film.h"
@@ -13,18 +14,38 @@
 
 namespace whisker {
 
+// Whether every pass of `scene` gives the same image: no indirect light, no
+// anti-aliasing jitter, no Fresnel choice at glass (off, or no glass), and the
+// one point light. Its render is exact after one pass.
+bool deterministic_estimate(const Scene& scene);
+
+// The cheap estimator, for the first moments after an edit: the same paths
+// at one sample per pass, one path per sample (no splitting, no reuse), with
+// its own seed so its samples are independent of the settings' own.
+RenderSettings cheap_settings(const RenderSettings& s);
+// Whether the cheap estimator differs from the settings' own.
+bool cheap_differs(const RenderSettings& s);
+
 // A tile's pixels and the pass's samples of each: numbers first_sample to
-// first_sample + spp - 1.
+// first_sample + spp - 1. `abandon`, asked before every sample of a block,
+// says the pass is being dropped (a stop or an edit): a tile of a pass of
+// 65536 samples takes minutes, and a stop must not wait for it.
 struct TileWork {
   PixelBlock pixels;
   std::uint64_t first_sample = 0;
   int spp = 0;
+  std::function<bool()> abandon;
+};
+
+struct TileResult {
+  std::uint64_t dropped = 0;  // samples not finite
+  bool abandoned = false;     // stopped early: the film holds part of the tile
 };
 
 // Adds the tile's samples to the film. With path reuse the blocks start at
 // the tile's corner (tiles never split a block, so an image is the same
-// whatever the thread count). Returns the samples dropped (not finite).
-std::uint64_t render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
-                          Film& film);
+// whatever the thread count).
+TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
+                       Film& film);
 
 }  // namespace whisker

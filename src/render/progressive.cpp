@@ -4,6 +4,11 @@
 #include <barrier>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <system_error>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -55,20 +60,6 @@ struct ProgressiveRenderer::Job {
   std::atomic<std::uint64_t> pass_nans{0}, pass_rays{0};
   std::atomic<bool> aborted{false};
 };
-
-bool deterministic_estimate(const Scene& scene) {
-  const RenderSettings& s = scene.settings;
-  if (s.indirect || s.aa) return false;
-  if (!s.fresnel) return true;
-  const auto glass = [](const Material& m) {
-    return m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass;
-  };
-  for (const SphereObject& sp : scene.spheres)
-    if (glass(sp.material)) return false;
-  for (const MeshObject& m : scene.meshes)
-    if (glass(m.material)) return false;
-  return true;
-}
 
 ProgressiveRenderer::ProgressiveRenderer(int threads) {
   threads_ = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -125,11 +116,6 @@ ProgressiveRenderer::PassProgress ProgressiveRenderer::pass_progress() const {
   return p;
 }
 
-Scene ProgressiveRenderer::current_scene() const {
-  std::lock_guard lock(pending_mutex_);
-  return pending_scene_;
-}
-
 void ProgressiveRenderer::start() {
   if (!pool_.empty()) return;
   {
@@ -138,7 +124,27 @@ void ProgressiveRenderer::start() {
   }
   job_ = std::make_unique<Job>(threads_);
   running_ = true;
-  for (int i = 0; i < threads_; ++i) pool_.emplace_back([this, i] { worker_main(i); });
+  pool_.reserve(std::size_t(threads_));
+  for (int i = 0; i < threads_; ++i) {
+    try {
+      pool_.emplace_back([this, i] { worker_main(i); });
+    } catch (const std::system_error& e) {
+      // EAGAIN under ulimit -u, or a stack past ulimit -v (pthread_create(3)).
+      // The threads not created leave the barrier (arrive_and_drop,
+      // [thread.barrier.class]), else the others wait there for ever.
+      const std::string why = e.code().message();
+      if (i == 0) {
+        job_.reset();
+        running_ = false;
+        throw std::runtime_error("cannot create a render thread: " + why + " (limit of processes, ulimit -u, or of memory, ulimit -v)");
+      }
+      for (int k = i; k < threads_; ++k) job_->sync.arrive_and_drop();
+      std::fprintf(stderr, "whisker: warning: created %d of %d render threads (%s); rendering with %d\n",
+                   i, threads_, why.c_str(), i);
+      threads_ = i;
+      break;
+    }
+  }
 }
 
 void ProgressiveRenderer::stop() {
@@ -191,26 +197,6 @@ bool ProgressiveRenderer::quick_snapshot(Snapshot& out) const {
   return true;
 }
 
-bool ProgressiveRenderer::quick_differs(const RenderSettings& s) {
-  if (s.spp > 1) return true;
-  if (!s.indirect) return false;  // splitting and reuse act on indirect paths only
-  if (reuses_paths(s)) return true;
-  for (int f : s.split)
-    if (f > 1) return true;
-  return false;
-}
-
-RenderSettings ProgressiveRenderer::quick_settings(const RenderSettings& s) {
-  RenderSettings q = s;
-  q.spp = 1;
-  q.split = {1};
-  q.split_weights = vec3(1.0f);
-  q.reuse = 1;
-  // Samples independent of the generation's own (which use `seed`).
-  q.seed = s.seed ^ 0x9e3779b97f4a7c15ull;
-  return q;
-}
-
 bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
   std::unique_lock lock(publish_mutex_);
   publish_cv_.wait(lock, [&] {
@@ -230,14 +216,46 @@ void ProgressiveRenderer::worker_main(int index) {
     ::setpriority(PRIO_PROCESS, tid, ::getpriority(PRIO_PROCESS, tid) + 5);
   }
   Job& job = *job_;
+  // Out of memory in a worker (the BVH, the film, a snapshot) ended the
+  // process in std::terminate: it stops the render instead, for failure().
+  const auto out_of_memory = [&](const char* doing) {
+    {
+      std::lock_guard lock(pending_mutex_);
+      if (failure_.empty()) failure_ = std::string("out of memory while ") + doing;
+      quit_ = true;
+    }
+    job.aborted = true;
+  };
   for (;;) {
-    if (index == 0) job.keep_going = begin_pass();
+    if (index == 0) {
+      try {
+        job.keep_going = begin_pass();
+      } catch (const std::bad_alloc&) {
+        out_of_memory("preparing the scene (its BVH and image buffers)");
+        job.keep_going = false;
+      }
+    }
     job.sync.arrive_and_wait();
     if (!job.keep_going) return;
-    run_tiles();
+    try {
+      run_tiles();
+    } catch (const std::bad_alloc&) {
+      out_of_memory("rendering");
+    }
     job.sync.arrive_and_wait();
-    if (index == 0) end_pass();
+    if (index == 0) {
+      try {
+        end_pass();
+      } catch (const std::bad_alloc&) {
+        out_of_memory("publishing a pass");
+      }
+    }
   }
+}
+
+std::string ProgressiveRenderer::failure() const {
+  std::lock_guard lock(pending_mutex_);
+  return failure_;
 }
 
 bool ProgressiveRenderer::begin_pass() {
@@ -274,12 +292,12 @@ bool ProgressiveRenderer::begin_pass() {
     job.preview_pass = false;
     job.exact = deterministic_estimate(job.scene);
     job.film.reset(job.width, job.height);
-    job.quick_active = preview_enabled_ && !start.resume && quick_differs(job.scene.settings);
+    job.quick_active = preview_enabled_ && !start.resume && cheap_differs(job.scene.settings);
     job.quick_spp = 0;
     job.quick_seconds = 0.0;
     if (job.quick_active) {
       job.quick_scene = job.scene;
-      job.quick_scene.settings = quick_settings(job.scene.settings);
+      job.quick_scene.settings = cheap_settings(job.scene.settings);
       job.quick_film.reset(job.width, job.height);
     }
     adopt_start(start);
@@ -326,6 +344,13 @@ void ProgressiveRenderer::adopt_start(const RenderStart& start) {
   job.seconds = a.seconds;
 }
 
+bool ProgressiveRenderer::abandoning() const {
+  // A quick pass runs to its end (a drag shows each one), but a stop ends it.
+  return quit_.load(std::memory_order_relaxed) ||
+         (!job_->preview_pass &&
+          pending_generation_.load(std::memory_order_relaxed) != job_->generation);
+}
+
 void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
   const int tiles = job.tiles_x * job.tiles_y;
@@ -333,8 +358,7 @@ void ProgressiveRenderer::run_tiles() {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
-    // A quick pass runs to its end (a drag shows each one), but a stop ends it.
-    if (quit_ || (!job.preview_pass && pending_generation_ != job.generation)) job.aborted = true;
+    if (abandoning()) job.aborted = true;
     if (job.aborted) break;
     const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
@@ -343,10 +367,14 @@ void ProgressiveRenderer::run_tiles() {
     const Scene& scene = job.preview_pass ? job.quick_scene : job.scene;
     Film& film = job.preview_pass ? job.quick_film : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
-    const std::uint64_t nans =
-        render_tile(ctx, *job.cam, TileWork{{i0, i1, j0, j1}, job.sample_base, job.pass_spp}, film);
+    const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); }};
+    const TileResult r = render_tile(ctx, *job.cam, work, film);
+    if (r.abandoned) {  // the pass is dropped as a whole, never published
+      job.aborted = true;
+      break;
+    }
     job.pass_rays.fetch_add(stats.rays, std::memory_order_relaxed);
-    job.pass_nans.fetch_add(nans, std::memory_order_relaxed);
+    job.pass_nans.fetch_add(r.dropped, std::memory_order_relaxed);
     progress_tiles_done_.fetch_add(1, std::memory_order_relaxed);
   }
 }

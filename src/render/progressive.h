@@ -8,10 +8,12 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "render/accumulation.h"
+#include "render/estimator.h"
 #include "render/film.h"
 #include "scene/scene.h"
 
@@ -26,11 +28,6 @@ struct RenderStart {
   std::uint64_t first_sample = 0;
   std::shared_ptr<const Accumulation> resume;
 };
-
-// Whether every pass of `scene` gives the same image: no indirect light, no
-// anti-aliasing jitter, no Fresnel choice at glass (off, or no glass), and the
-// one point light. Its render is exact after one pass.
-bool deterministic_estimate(const Scene& scene);
 
 class ProgressiveRenderer {
  public:
@@ -66,7 +63,10 @@ class ProgressiveRenderer {
   };
   PassProgress pass_progress() const;
 
-  void start();                 // launch the workers
+  // Launches the workers; with fewer threads if not all can be created (a
+  // warning on stderr; threads() says how many), throws std::runtime_error
+  // naming the cause if none can.
+  void start();
   void stop();                  // join them (a running pass is abandoned)
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
@@ -81,11 +81,8 @@ class ProgressiveRenderer {
   // images as fast as quick passes land. Off by default.
   void set_preview(bool on) { preview_enabled_ = on; }
   static constexpr double kQuickSeconds = 0.4;
-  // Whether quick passes differ from the settings' own passes (they are the
-  // same estimator at one sample per pass without splitting or reuse).
-  static bool quick_differs(const RenderSettings& s);
-  // The settings of a quick pass: one sample, one path, no reuse, its own seed.
-  static RenderSettings quick_settings(const RenderSettings& s);
+  // Quick passes use the cheap estimator (estimator.h: cheap_settings) when
+  // it differs from the settings' own (cheap_differs).
   // The latest quick pass's film (its generation, spp = quick samples),
   // copied if its version differs from out.version. Never waits.
   bool quick_snapshot(Snapshot& out) const;
@@ -109,14 +106,15 @@ class ProgressiveRenderer {
   // reached its target). Returns false if the renderer was stopped first.
   bool wait_for(std::uint64_t gen, std::uint64_t spp);
 
-  // The scene currently being rendered (after adoption).
-  Scene current_scene() const;
+  // Why the workers stopped on their own ("out of memory while ..."), or "".
+  std::string failure() const;
 
  private:
   struct Job;
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
   void run_tiles();
+  bool abandoning() const;  // a stop or an edit: the pass in flight is dropped
   void end_pass();     // thread 0 only: merge and publish
   void adopt_start(const RenderStart& start);  // thread 0, at adoption
 
@@ -138,6 +136,7 @@ class ProgressiveRenderer {
   // between tiles without taking the lock.
   std::atomic<std::uint64_t> pending_generation_{0};
   std::atomic<bool> quit_{false};
+  std::string failure_;  // guarded by pending_mutex_
   // published snapshot, guarded by publish_mutex_
   mutable std::mutex publish_mutex_;
   std::condition_variable publish_cv_;

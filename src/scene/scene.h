@@ -27,6 +27,9 @@ using glm::dvec3;
 // section 2); it is expanded into those two shells when the scene is built.
 enum class MaterialKind : std::uint8_t { Diffuse, Mirror, Glass, HollowGlass };
 
+// Glass: a solid ball, or a hollow one's two shells (both refract).
+inline bool is_glass(MaterialKind k) { return k == MaterialKind::Glass || k == MaterialKind::HollowGlass; }
+
 struct Material {
   MaterialKind kind = MaterialKind::Diffuse;
   vec3 albedo{1.0f};  // diffuse only

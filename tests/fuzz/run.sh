@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bounded fuzzing of the scene reader and the OBJ loader with libFuzzer.
+# Bounded fuzzing of the scene reader, the OBJ loader and the part reader with libFuzzer.
 #   tests/fuzz/run.sh [SECONDS] [JOBS]   SECONDS per harness (default 60)
 # Builds the harnesses with clang into build-fuzz/ (or $WHISKER_FUZZ_BUILD),
 # seeds each from tests/fuzz/corpus and the reproducers, and fuzzes into a
@@ -39,7 +39,7 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
 status=0
 cd "$build"  # libFuzzer's -jobs logs (fuzz-N.log) land here
-for name in scene obj; do
+for name in scene obj part; do
   work="$build/corpus/$name" findings="$build/findings/$name"
   mkdir -p "$work" "$findings"
   log="$build/fuzz_$name.log"
