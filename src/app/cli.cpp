@@ -16,6 +16,7 @@
 #include "render/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
+#include "whisker_version.h"
 
 namespace whisker {
 
@@ -122,6 +123,9 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Scene name (assets/scenes/NAME.json) or path to a scene file")
       ->capture_default_str();
   app.add_option("--mesh", o.mesh, "Use this OBJ file for the scene's meshes");
+  app.add_option("FILE", o.file,
+                 "A scene file (.json) to open, or an OBJ mesh (.obj) to show in the cat "
+                 "scene's room in place of the cat (as --scene cat --mesh FILE)");
   int_in(app.add_option("--frames", o.frames,
                  "Passes of --spp samples per pixel. Headless: render N passes and write the "
                  "outputs (default: the scene's target_spp samples, see --target-spp). Viewer: "
@@ -255,6 +259,27 @@ int usage_error(const std::string& message) {
 
 namespace {
 
+// The positional FILE: a scene file, or a mesh in the cat's room.
+std::string open_file(const CLI::App& app, CommandLine& o) {
+  if (o.file.empty()) return app.count("FILE") ? "FILE: needs a value, got \"\" (see --help)" : "";
+  const std::string ext = lower_extension(o.file);
+  if (ext != ".json" && ext != ".obj")
+    return "unexpected argument " + cut_for_message(o.file) +
+           " (a file to open ends in .json or .obj; options start with --; see --help)";
+  if (app.count("--scene"))
+    return cut_for_message(o.file) + " and --scene " + cut_for_message(o.scene_name) +
+           " both name the scene; give one";
+  if (ext == ".json") {
+    o.scene_name = o.file;  // a path: resolve_scene reads any NAME.json as one
+    return {};
+  }
+  if (!o.mesh.empty())
+    return cut_for_message(o.file) + " and --mesh " + cut_for_message(o.mesh) +
+           " both name the mesh; give one";
+  o.mesh = o.file;
+  return {};
+}
+
 // What the parser's failure does: --help and --version print and return 0;
 // anything else is one line, "whisker: ...", and kUsageError.
 int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
@@ -266,7 +291,7 @@ int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
 
 std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
-  app.set_version_flag("--version", "whisker 0.1");
+  app.set_version_flag("--version", "whisker " WHISKER_VERSION);
   add_app_options(app, out);
   // One line, like every other refusal: "whisker: --frames: ...".
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -293,6 +318,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
     for (const std::string& r : opt->results())
       if (r.empty()) return usage_error(std::string(name) + ": needs a value, got \"\" (see --help)");
   }
+  if (const std::string why = open_file(app, out); !why.empty()) return usage_error(why);
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
     if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())

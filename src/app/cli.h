@@ -17,6 +17,10 @@ struct CommandLine {
   bool headless = false;
   std::string scene_name = "cat";
   std::string mesh;
+  // FILE, the one positional argument (what a desktop launcher passes): a
+  // scene file (.json) or a mesh (.obj, shown in the cat scene's room in
+  // place of the cat). Sets scene_name, or mesh with scene_name "cat".
+  std::string file;
   int frames = 0;
   int threads = 0;
   // The settings options given, and their values in `settings`.

@@ -78,8 +78,11 @@ std::string missing_scene(const std::string& name) {
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   const std::string hint = closest(std::filesystem::path(name).stem().string(), names);
-  const std::string where = path.string() == name ? "" : path.string() + ": ";
-  return "--scene " + name + ": " + where + "scene file not found; bundled scenes: " +
+  // A name: which file, and every folder it was looked for in.
+  const std::string where = path.string() == name ? "scene file not found"
+                            : path.filename().string() + ": scene file not found in " +
+                                  scene_dirs_text();
+  return "--scene " + name + ": " + where + "; bundled scenes: " +
          list + (hint.empty() ? "" : "; did you mean --scene " + hint + "?");
 }
 
