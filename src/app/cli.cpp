@@ -120,7 +120,7 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                "Render without a window and write --out/--out-float/--stats: --frames N passes, "
                "else the scene's target_spp samples per pixel");
   app.add_option("--scene", o.scene_name,
-                 "Scene name (assets/scenes/NAME.json) or path to a scene file")
+                 "Scene name (NAME.json in $WHISKER_SCENES, $WHISKER_ASSETS/scenes, ./assets/scenes, then the data folder beside the binary) or path to a scene file")
       ->capture_default_str();
   app.add_option("--mesh", o.mesh, "Use this OBJ file for the scene's meshes");
   app.add_option("FILE", o.file,
