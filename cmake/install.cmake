@@ -43,12 +43,12 @@ set(CPACK_PACKAGE_NAME whisker)
 set(CPACK_PACKAGE_VERSION ${WHISKER_VERSION})
 set(CPACK_PACKAGE_CONTACT "Whisker developers <whisker@localhost>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "progressive CPU path tracer with an OpenGL viewer")
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION
-"progressive CPU path tracer with an OpenGL viewer
- Whisker renders spheres (diffuse, mirror, glass, hollow glass) and triangle
- meshes under a point light with Monte Carlo path tracing. A window shows the
- image as it refines; a headless mode writes PNG, PFM and OpenEXR images.
- The package includes the bundled scenes and the cat mesh.")
+# The package's long description (CPack puts the summary above it).
+set(CPACK_PACKAGE_DESCRIPTION
+"Whisker renders spheres (diffuse, mirror, glass, hollow glass) and triangle
+meshes under a point light with Monte Carlo path tracing. A window shows the
+image as it refines; a headless mode writes PNG, PFM and OpenEXR images.
+The package includes the bundled scenes and the cat mesh.")
 set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
