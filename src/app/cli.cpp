@@ -125,7 +125,7 @@ void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_option("--mesh", o.mesh, "Use this OBJ file for the scene's meshes");
   app.add_option("FILE", o.file,
                  "A scene file (.json) to open, or an OBJ mesh (.obj) to show in the cat "
-                 "scene's room in place of the cat (as --scene cat --mesh FILE)");
+                 "scene's room in place of the cat, scaled to fit where the cat stands");
   int_in(app.add_option("--frames", o.frames,
                  "Passes of --spp samples per pixel. Headless: render N passes and write the "
                  "outputs (default: the scene's target_spp samples, see --target-spp). Viewer: "

@@ -19,7 +19,8 @@ struct CommandLine {
   std::string mesh;
   // FILE, the one positional argument (what a desktop launcher passes): a
   // scene file (.json) or a mesh (.obj, shown in the cat scene's room in
-  // place of the cat). Sets scene_name, or mesh with scene_name "cat".
+  // place of the cat, fitted: fit_in_cat_room). Sets scene_name, or mesh
+  // with scene_name "cat".
   std::string file;
   int frames = 0;
   int threads = 0;

@@ -8,6 +8,7 @@
 #include "app/cli.h"
 #include "app/headless.h"
 #include "app/merge.h"
+#include "app/open_file.h"
 #include "app/signals.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
@@ -110,6 +111,7 @@ int main(int argc, char** argv) {
   Scene scene;
   try {
     scene = load_scene(resolve_scene(cl.scene_name), cl.mesh);
+    if (lower_extension(cl.file) == ".obj") fit_in_cat_room(scene);
   } catch (const SceneError& e) {
     return usage_error(e.what());
   } catch (const std::filesystem::filesystem_error& e) {

@@ -1,5 +1,6 @@
 #!/bin/bash
-# The Debian package: cpack -G DEB of the build; its files, its control
+# The Debian package (scripts/package.sh --no-build: cpack -G DEB of the
+# installed build, nothing rebuilt); its files, its control
 # fields (Depends from the linked libraries, the version --version prints),
 # no maintainer scripts (so removing it removes every file it brought); then
 # the unpacked package's binary renders from another folder, source hidden.
@@ -10,8 +11,8 @@ here=$(cd "$(dirname "$0")" && pwd)
 # shellcheck source=lib.sh
 source "$here/lib.sh"
 
-(cd "$build" && cpack -G DEB -B "$tmp/pkg") >"$tmp/cpack.log" 2>&1 ||
-  { cat "$tmp/cpack.log" >&2; fail "cpack -G DEB failed"; }
+WHISKER_BUILD=$build bash "$src/scripts/package.sh" --no-build "$tmp/pkg" >"$tmp/cpack.log" 2>&1 ||
+  { cat "$tmp/cpack.log" >&2; fail "scripts/package.sh --no-build failed"; }
 debs=("$tmp"/pkg/whisker_*.deb)
 [ ${#debs[@]} -eq 1 ] && [ -f "${debs[0]}" ] || fail "no single whisker_*.deb: ${debs[*]}"
 deb=${debs[0]}

@@ -61,9 +61,15 @@ grep -qF "did you mean --scene cat?" "$tmp/kat.err" || fail "--scene kat: no hin
 
 # The positional FILE: a scene file, an OBJ in the cat's room.
 expect from-cwd assets/scenes/three-balls.json
-printf 'v -5 0 0\nv 5 0 0\nv 0 8 0\nf 1 2 3\n' >"$tmp/cwd/tri.obj"
+# A tiny triangle far off: as --mesh it is out of sight (the empty room);
+# as FILE it is fitted where the cat stands, so the image differs.
+printf 'v 5000 0 0\nv 5000.01 0 0\nv 5000 0.008 0\nf 1 2 3\n' >"$tmp/cwd/tri.obj"
 expect cat tri.obj --out tri.png
 python3 "$here/check_png.py" "$tmp/cwd/tri.png" 512 512 0.5 || fail "tri.png"
+expect cat --scene cat --mesh tri.obj --out room.png
+cmp -s "$tmp/cwd/tri.png" "$tmp/cwd/room.png" && fail "tri.obj as FILE is not in view"
+expect cat --scene cat --mesh tri.obj --out room2.png
+cmp -s "$tmp/cwd/room.png" "$tmp/cwd/room2.png" || fail "two renders of one scene differ"
 # Refused, exit 2, one line: other files, two scenes, two meshes.
 refused() {  # message args...
   local want=$1
