@@ -1,4 +1,5 @@
 #include "app/cli.h"
+#include "app/open_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -259,27 +260,6 @@ int usage_error(const std::string& message) {
 
 namespace {
 
-// The positional FILE: a scene file, or a mesh in the cat's room.
-std::string open_file(const CLI::App& app, CommandLine& o) {
-  if (o.file.empty()) return app.count("FILE") ? "FILE: needs a value, got \"\" (see --help)" : "";
-  const std::string ext = lower_extension(o.file);
-  if (ext != ".json" && ext != ".obj")
-    return "unexpected argument " + cut_for_message(o.file) +
-           " (a file to open ends in .json or .obj; options start with --; see --help)";
-  if (app.count("--scene"))
-    return cut_for_message(o.file) + " and --scene " + cut_for_message(o.scene_name) +
-           " both name the scene; give one";
-  if (ext == ".json") {
-    o.scene_name = o.file;  // a path: resolve_scene reads any NAME.json as one
-    return {};
-  }
-  if (!o.mesh.empty())
-    return cut_for_message(o.file) + " and --mesh " + cut_for_message(o.mesh) +
-           " both name the mesh; give one";
-  o.mesh = o.file;
-  return {};
-}
-
 // What the parser's failure does: --help and --version print and return 0;
 // anything else is one line, "whisker: ...", and kUsageError.
 int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
@@ -318,7 +298,9 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
     for (const std::string& r : opt->results())
       if (r.empty()) return usage_error(std::string(name) + ": needs a value, got \"\" (see --help)");
   }
-  if (const std::string why = open_file(app, out); !why.empty()) return usage_error(why);
+  if (const std::string why = apply_file_argument(out, app.count("FILE") > 0, app.count("--scene") > 0);
+      !why.empty())
+    return usage_error(why);
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
     if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())

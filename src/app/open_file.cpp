@@ -6,8 +6,30 @@
 #include <glm/common.hpp>
 
 #include "scene/mesh_io.h"
+#include "scene/quote.h"
 
 namespace whisker {
+
+std::string apply_file_argument(CommandLine& o, bool given, bool scene_given) {
+  if (o.file.empty()) return given ? "FILE: needs a value, got \"\" (see --help)" : "";
+  const std::string ext = lower_extension(o.file);
+  if (ext != ".json" && ext != ".obj")
+    return "unexpected argument " + cut_for_message(o.file) +
+           " (a file to open ends in .json or .obj; options start with --; see --help)";
+  if (scene_given)
+    return cut_for_message(o.file) + " and --scene " + cut_for_message(o.scene_name) +
+           " both name the scene; give one";
+  if (ext == ".json") {
+    o.scene_name = o.file;  // a path: resolve_scene reads any NAME.json as one
+    return {};
+  }
+  if (!o.mesh.empty())
+    return cut_for_message(o.file) + " and --mesh " + cut_for_message(o.mesh) +
+           " both name the mesh; give one";
+  o.mesh = o.file;
+  o.scene_name = "cat";
+  return {};
+}
 
 void fit_in_cat_room(Scene& scene) {
   const dvec3 room(40.0, 28.0, 40.0);  // about the cat's box (39 x 27 x 10)
