@@ -1,4 +1,5 @@
 #include "app/cli.h"
+#include "app/open_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -16,6 +17,7 @@
 #include "render/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
+#include "whisker_version.h"
 
 namespace whisker {
 
@@ -48,24 +50,6 @@ struct TypeName {
   }
   std::string operator()(vec3 RenderSettings::*) const { return "R,G,B each" + bounds(f.hi); }
 };
-
-// An output path is usable if its folder exists and is writable, and the
-// path names a regular file or nothing.
-std::string check_output(const std::string& path, const char* option) {
-  if (path.empty()) return {};
-  const fs::path p(path);
-  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    return std::string(option) + " " + path + ": folder " + dir.string() + " does not exist";
-  // Never replace a directory, FIFO, device node or socket (nor what a
-  // symbolic link points to) by a regular file.
-  if (const std::string why = not_replaceable(path); !why.empty())
-    return std::string(option) + " " + path + ": " + why;
-  if (::access(dir.c_str(), W_OK) != 0)
-    return std::string(option) + " " + path + ": folder " + dir.string() + " is not writable";
-  return {};
-}
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -119,9 +103,12 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                "Render without a window and write --out/--out-float/--stats: --frames N passes, "
                "else the scene's target_spp samples per pixel");
   app.add_option("--scene", o.scene_name,
-                 "Scene name (assets/scenes/NAME.json) or path to a scene file")
+                 "Scene name (NAME.json in $WHISKER_SCENES, $WHISKER_ASSETS/scenes, ./assets/scenes, then the data folder beside the binary) or path to a scene file")
       ->capture_default_str();
   app.add_option("--mesh", o.mesh, "Use this OBJ file for the scene's meshes");
+  app.add_option("FILE", o.file,
+                 "A scene file (.json) to open, or an OBJ mesh (.obj) to show in the cat "
+                 "scene's room in place of the cat, scaled to fit where the cat stands");
   int_in(app.add_option("--frames", o.frames,
                  "Passes of --spp samples per pixel. Headless: render N passes and write the "
                  "outputs (default: the scene's target_spp samples, see --target-spp). Viewer: "
@@ -274,7 +261,7 @@ int parse_failure(const CLI::ParseError& e, const CLI::App& app) {
 
 std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
-  app.set_version_flag("--version", "whisker 0.1");
+  app.set_version_flag("--version", "whisker " WHISKER_VERSION);
   add_app_options(app, out);
   // One line, like every other refusal: "whisker: --frames: ...".
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -301,6 +288,9 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
     for (const std::string& r : opt->results())
       if (r.empty()) return usage_error(std::string(name) + ": needs a value, got \"\" (see --help)");
   }
+  if (const std::string why = apply_file_argument(out, app.count("FILE") > 0, app.count("--scene") > 0);
+      !why.empty())
+    return usage_error(why);
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (options[i]->count() == 0) continue;
     if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())
@@ -349,14 +339,6 @@ std::string apply_command_line(const CommandLine& cl, Scene& scene) {
   return {};
 }
 
-bool same_file(const std::string& a, const std::string& b) {
-  std::error_code ea, eb;
-  if (fs::equivalent(a, b, ea)) return true;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
-                   cb = fs::weakly_canonical(fs::absolute(b), eb);
-  return !ea && !eb && ca == cb;
-}
-
 bool given(const CommandLine& cl, const char* option) {
   return std::any_of(cl.given.begin(), cl.given.end(),
                      [&](const SettingField* f) { return std::string(f->option) == option; });
@@ -366,83 +348,6 @@ std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& s) 
   const std::uint64_t spp = std::uint64_t(std::max(s.spp, 1));
   if (cl.frames > 0) return std::uint64_t(cl.frames) * spp;
   return s.target_spp > 0 ? std::uint64_t(s.target_spp) : spp;
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
-std::string check_outputs(const CommandLine& cl, const Scene& scene) {
-  const RenderSettings& s = scene.settings;
-  // One rule for where a render stops: --frames N passes, else the target.
-  if (cl.frames > 0 && given(cl, "--target-spp"))
-    return "--frames " + std::to_string(cl.frames) + " and --target-spp " +
-           std::to_string(s.target_spp) + " both set the samples per pixel; give one";
-  if (!cl.samples.empty() && given(cl, "--target-spp"))
-    return "--samples " + cl.samples + " sets the samples per pixel; drop --target-spp";
-  // frames x spp samples per pixel must fit the target counter.
-  if (cl.frames > 0 && std::uint64_t(cl.frames) * std::uint64_t(s.spp) > (1ull << 30))
-    return "--frames " + std::to_string(cl.frames) + " x --spp " + std::to_string(s.spp) +
-           " is more than 2^30 samples per pixel";
-  const std::pair<std::string, const char*> outs[] = {
-      {cl.out_png, "--out"}, {cl.out_float, "--out-float"}, {cl.stats_json, "--stats"},
-      {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}};
-  for (const auto& [path, option] : outs) {
-    if (auto err = check_output(path, option); !err.empty()) return err;
-  }
-  // No output may replace an input or another output of the same run; the
-  // exception: --out-sum X --resume X continues the accumulation in place.
-  // The inputs: the scene file, --resume, and every mesh the scene loaded
-  // (from its file's paths or --mesh): --stats cat.obj replaced the mesh.
-  std::vector<std::pair<std::string, const char*>> ins = {
-      {resolve_scene(cl.scene_name).string(), "--scene"}, {cl.mesh, "--mesh"}, {cl.resume, "--resume"}};
-  for (const MeshObject& m : scene.meshes) {
-    try {
-      ins.emplace_back(resolve_mesh(m.path, fs::path(scene.source_path).parent_path(), "").string(),
-                       "mesh");
-    } catch (const SceneError&) {
-      // It was found when the scene loaded; nothing to compare if not now.
-    }
-  }
-  for (std::size_t i = 0; i < std::size(outs); ++i) {
-    const auto& [path, option] = outs[i];
-    if (path.empty()) continue;
-    for (std::size_t j = i + 1; j < std::size(outs); ++j)
-      if (!outs[j].first.empty() && same_file(path, outs[j].first))
-        return std::string(option) + " " + path + " and " + outs[j].second + " " + outs[j].first +
-               " name the same file; give each output its own";
-    for (const auto& [in, in_option] : ins) {
-      if (in.empty() || (outs[i].second == std::string("--out-sum") && in_option == std::string("--resume")))
-        continue;
-      if (same_file(path, in))
-        return std::string(option) + " " + path + ": is the " + in_option + " input; write it elsewhere";
-    }
-  }
-  if (!cl.out_png.empty() && lower_extension(cl.out_png) != ".png")
-    return "--out " + cl.out_png + ": must end in .png";
-  if (!cl.out_float.empty()) {
-    const auto ext = lower_extension(cl.out_float);
-    if (ext != ".pfm" && ext != ".exr")
-      return "--out-float " + cl.out_float + ": must end in .pfm or .exr";
-    if (ext == ".exr" && !have_exr())
-      return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
-  }
-  if (cl.float_units != "scene" && cl.float_units != "display")
-    return "--float-units " + cl.float_units + ": expected scene or display";
-  if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
-      cl.edit_toggle != "fresnel")
-    return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
-  if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
-    return "--float-units " + cl.float_units + " is for --headless --out-float";
-  if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
-  if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
-      cl.out_sum.empty())
-    return "--headless needs at least one of --out, --out-float, --stats, --out-sum";
-  if (!cl.screenshot.empty() && lower_extension(cl.screenshot) != ".png")
-    return "--screenshot " + cl.screenshot + ": must end in .png";
-  return {};
 }
 
 }  // namespace whisker

@@ -17,6 +17,11 @@ struct CommandLine {
   bool headless = false;
   std::string scene_name = "cat";
   std::string mesh;
+  // FILE, the one positional argument (what a desktop launcher passes): a
+  // scene file (.json) or a mesh (.obj, shown in the cat scene's room in
+  // place of the cat, fitted: fit_in_cat_room). Sets scene_name, or mesh
+  // with scene_name "cat".
+  std::string file;
   int frames = 0;
   int threads = 0;
   // The settings options given, and their values in `settings`.

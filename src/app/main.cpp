@@ -9,6 +9,7 @@
 #include "app/cli.h"
 #include "app/headless.h"
 #include "app/merge.h"
+#include "app/open_file.h"
 #include "app/shards.h"
 #include "app/signals.h"
 #include "scene/quote.h"
@@ -109,8 +110,11 @@ std::string missing_scene(const std::string& name) {
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
   const std::string hint = closest(std::filesystem::path(name).stem().string(), names);
-  const std::string where = path.string() == name ? "" : path.string() + ": ";
-  return "--scene " + name + ": " + where + "scene file not found; bundled scenes: " +
+  // A name: which file, and every folder it was looked for in.
+  const std::string where = path.string() == name ? "scene file not found"
+                            : path.filename().string() + ": scene file not found in " +
+                                  scene_dirs_text();
+  return "--scene " + name + ": " + where + "; bundled scenes: " +
          list + (hint.empty() ? "" : "; did you mean --scene " + hint + "?");
 }
 
@@ -154,6 +158,7 @@ int main(int argc, char** argv) {
   Scene scene;
   try {
     scene = load_scene(resolve_scene(cl.scene_name), cl.mesh);
+    if (lower_extension(cl.file) == ".obj") fit_in_cat_room(scene);
   } catch (const SceneError& e) {
     return usage_error(e.what());
   } catch (const std::filesystem::filesystem_error& e) {

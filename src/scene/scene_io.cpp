@@ -78,7 +78,28 @@ std::string line_column(const std::string& text, std::size_t byte) {
   return std::to_string(line) + ":" + std::to_string(col);
 }
 
-fs::path source_root() { return fs::path(WHISKER_SOURCE_DIR); }
+// The data folder next to the running binary: <bin>/../share/whisker when
+// installed, <bin>/assets in a build tree (a link the build makes to the
+// source's assets/; test binaries in build/tests get one too). Found from
+// /proc/self/exe, never from a path compiled in.
+fs::path data_dir() {
+  std::error_code ec;
+  const fs::path bin = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  if (ec || bin.empty()) return {};
+  const fs::path installed = (bin / ".." / "share" / "whisker").lexically_normal();
+  if (fs::is_directory(installed / "scenes", ec)) return installed;
+  if (fs::is_directory(bin / "assets" / "scenes", ec)) return bin / "assets";
+  return installed;
+}
+
+// Each folder once (the working folder may be the checkout the binary's
+// data links to).
+void add_unique(std::vector<fs::path>& dirs, const fs::path& dir) {
+  std::error_code ec;
+  for (const fs::path& d : dirs)
+    if (d == dir || fs::equivalent(d, dir, ec)) return;
+  dirs.push_back(dir);
+}
 
 // Finds a key given twice in one object, which the JSON parser would take
 // silently, keeping the last ({"width": 64, "width": 8192}): a callback of
@@ -145,22 +166,55 @@ class DuplicateKeys {
 
 }  // namespace
 
+std::vector<fs::path> asset_dirs() {
+  std::vector<fs::path> dirs;
+  if (const char* env = std::getenv("WHISKER_ASSETS"); env && *env) add_unique(dirs, env);
+  std::error_code ec;
+  if (const fs::path here = fs::current_path(ec); !ec && fs::is_directory(here / "assets", ec))
+    add_unique(dirs, here / "assets");
+  if (const fs::path data = data_dir(); !data.empty()) add_unique(dirs, data);
+  return dirs;
+}
+
+std::vector<fs::path> scene_dirs() {
+  std::vector<fs::path> dirs;
+  if (const char* env = std::getenv("WHISKER_SCENES"); env && *env) add_unique(dirs, env);
+  for (const fs::path& a : asset_dirs()) add_unique(dirs, a / "scenes");
+  return dirs;
+}
+
+std::string scene_dirs_text() {
+  std::string text;
+  for (const fs::path& d : scene_dirs()) text += (text.empty() ? "" : ", ") + d.string();
+  return text.empty() ? "no folder (no $WHISKER_SCENES, ./assets or data folder)" : text;
+}
+
 fs::path scenes_dir() {
-  if (const char* env = std::getenv("WHISKER_SCENES"); env && *env) return env;
-  return source_root() / "assets" / "scenes";
+  std::error_code ec;
+  const auto dirs = scene_dirs();
+  for (const fs::path& d : dirs)
+    if (fs::is_directory(d, ec)) return d;
+  return dirs.empty() ? fs::path("assets/scenes") : dirs.back();
 }
 
 fs::path resolve_scene(const std::string& name) {
   if (name.find('/') != std::string::npos || name.ends_with(".json")) return name;
-  return scenes_dir() / (name + ".json");
+  const auto dirs = scene_dirs();
+  std::error_code ec;
+  for (const fs::path& d : dirs)
+    if (fs::exists(d / (name + ".json"), ec)) return d / (name + ".json");
+  return (dirs.empty() ? fs::path("assets/scenes") : dirs.back()) / (name + ".json");
 }
 
 std::vector<std::string> list_scenes() {
   std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(scenes_dir(), ec))
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  for (const fs::path& d : scene_dirs()) {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(d, ec))
+      if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  }
   std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
   return names;
 }
 
@@ -172,9 +226,7 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
     tried.push_back(p);
   } else {
     tried.push_back(base_dir / p);
-    if (const char* env = std::getenv("WHISKER_ASSETS"); env && *env)
-      tried.push_back(fs::path(env) / p);
-    tried.push_back(source_root() / "assets" / p);
+    for (const fs::path& a : asset_dirs()) tried.push_back(a / p);
   }
   std::error_code ec;
   for (const auto& t : tried)
@@ -282,9 +334,11 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
     if (ec && ec != std::errc::no_such_file_or_directory)
       throw SceneError(path.string() + ": cannot open scene file: " + ec.message());
     std::string hint;
-    if (path.parent_path() == scenes_dir()) {
+    const auto dirs = scene_dirs();
+    if (std::find(dirs.begin(), dirs.end(), path.parent_path()) != dirs.end()) {
       for (const auto& n : list_scenes()) hint += (hint.empty() ? "" : ", ") + n;
-      hint = " (bundled scenes: " + hint + ")";
+      hint = " in " + scene_dirs_text() + " (bundled scenes: " + hint + ")";
+      throw SceneError(path.filename().string() + ": scene file not found" + hint);
     }
     throw SceneError(path.string() + ": scene file not found" + hint);
   }

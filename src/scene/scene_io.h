@@ -16,12 +16,20 @@ struct SceneError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The folder holding the bundled scenes: $WHISKER_SCENES, else
-// <source>/assets/scenes.
+// Where data (scenes/, cat.obj) is looked up, in this order: $WHISKER_ASSETS;
+// assets/ in the working folder; the data folder next to the binary
+// (<bin>/../share/whisker when installed, <bin>/assets in a build tree).
+std::vector<std::filesystem::path> asset_dirs();
+// Where a scene NAME is looked up: $WHISKER_SCENES, then scenes/ in each of
+// asset_dirs(). scene_dirs_text() lists them for messages.
+std::vector<std::filesystem::path> scene_dirs();
+std::string scene_dirs_text();
+// The first of scene_dirs() that exists.
 std::filesystem::path scenes_dir();
-// NAME -> scenes_dir()/NAME.json; anything with a '/' or ending in .json is a path.
+// NAME -> the first DIR/NAME.json of scene_dirs() that exists (else the
+// last candidate); anything with a '/' or ending in .json is a path.
 std::filesystem::path resolve_scene(const std::string& name_or_path);
-// Names of the bundled scenes, sorted.
+// Names of the scenes in scene_dirs(), sorted, each once.
 std::vector<std::string> list_scenes();
 
 // Parses and validates a scene file, loading its meshes. Throws SceneError.
@@ -36,8 +44,8 @@ std::string scene_to_json(const Scene& scene);
 // The camera alone as scene-file JSON ("camera": {...}).
 std::string camera_to_json(const Camera& camera);
 
-// Where a mesh path resolves: relative to the scene file, $WHISKER_ASSETS,
-// <source>/assets. Throws SceneError naming them.
+// Where a mesh path resolves: relative to the scene file, then in each of
+// asset_dirs(). Throws SceneError naming them.
 std::filesystem::path resolve_mesh(const std::string& path,
                                    const std::filesystem::path& base_dir,
                                    const std::string& field);

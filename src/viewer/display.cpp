@@ -20,13 +20,10 @@ std::string find_shader_dir() {
   if (const char* env = std::getenv("WHISKER_SHADERS")) candidates.emplace_back(env);
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
+  if (!ec) {  // a build tree (a link to the source's shaders/), or installed
     candidates.push_back(exe.parent_path() / "shaders");
     candidates.push_back(exe.parent_path() / "../share/whisker/shaders");
   }
-#ifdef WHISKER_SHADER_DIR
-  candidates.emplace_back(WHISKER_SHADER_DIR);
-#endif
   for (const fs::path& dir : candidates)
     if (fs::exists(dir / "display.frag", ec)) return dir.string();
   return {};

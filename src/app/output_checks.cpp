@@ -1,0 +1,125 @@
+// The command line's outputs checked before a render starts: folders that
+// exist and are writable, nothing special replaced, no output over an input
+// or over another output (cli.h: check_outputs).
+#include <filesystem>
+#include <string>
+
+#include <unistd.h>
+
+#include "app/cli.h"
+#include "render/image_io.h"
+#include "scene/quote.h"
+#include "scene/scene_io.h"
+
+namespace whisker {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// An output path is usable if its folder exists and is writable, and the
+// path names a regular file or nothing.
+std::string check_output(const std::string& path, const char* option) {
+  if (path.empty()) return {};
+  const fs::path p(path);
+  const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec))
+    return std::string(option) + " " + path + ": folder " + dir.string() + " does not exist";
+  // Never replace a directory, FIFO, device node or socket (nor what a
+  // symbolic link points to) by a regular file.
+  if (const std::string why = not_replaceable(path); !why.empty())
+    return std::string(option) + " " + path + ": " + why;
+  if (::access(dir.c_str(), W_OK) != 0)
+    return std::string(option) + " " + path + ": folder " + dir.string() + " is not writable";
+  return {};
+}
+
+}  // namespace
+
+bool same_file(const std::string& a, const std::string& b) {
+  std::error_code ea, eb;
+  if (fs::equivalent(a, b, ea)) return true;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea),
+                   cb = fs::weakly_canonical(fs::absolute(b), eb);
+  return !ea && !eb && ca == cb;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string check_outputs(const CommandLine& cl, const Scene& scene) {
+  const RenderSettings& s = scene.settings;
+  // One rule for where a render stops: --frames N passes, else the target.
+  if (cl.frames > 0 && given(cl, "--target-spp"))
+    return "--frames " + std::to_string(cl.frames) + " and --target-spp " +
+           std::to_string(s.target_spp) + " both set the samples per pixel; give one";
+  if (!cl.samples.empty() && given(cl, "--target-spp"))
+    return "--samples " + cl.samples + " sets the samples per pixel; drop --target-spp";
+  // frames x spp samples per pixel must fit the target counter.
+  if (cl.frames > 0 && std::uint64_t(cl.frames) * std::uint64_t(s.spp) > (1ull << 30))
+    return "--frames " + std::to_string(cl.frames) + " x --spp " + std::to_string(s.spp) +
+           " is more than 2^30 samples per pixel";
+  const std::pair<std::string, const char*> outs[] = {
+      {cl.out_png, "--out"}, {cl.out_float, "--out-float"}, {cl.stats_json, "--stats"},
+      {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}};
+  for (const auto& [path, option] : outs) {
+    if (auto err = check_output(path, option); !err.empty()) return err;
+  }
+  // No output may replace an input or another output of the same run; the
+  // exception: --out-sum X --resume X continues the accumulation in place.
+  // The inputs: the scene file, --resume, and every mesh the scene loaded
+  // (from its file's paths or --mesh): --stats cat.obj replaced the mesh.
+  std::vector<std::pair<std::string, const char*>> ins = {
+      {resolve_scene(cl.scene_name).string(), "--scene"}, {cl.mesh, "--mesh"}, {cl.resume, "--resume"}};
+  for (const MeshObject& m : scene.meshes) {
+    try {
+      ins.emplace_back(resolve_mesh(m.path, fs::path(scene.source_path).parent_path(), "").string(),
+                       "mesh");
+    } catch (const SceneError&) {
+      // It was found when the scene loaded; nothing to compare if not now.
+    }
+  }
+  for (std::size_t i = 0; i < std::size(outs); ++i) {
+    const auto& [path, option] = outs[i];
+    if (path.empty()) continue;
+    for (std::size_t j = i + 1; j < std::size(outs); ++j)
+      if (!outs[j].first.empty() && same_file(path, outs[j].first))
+        return std::string(option) + " " + path + " and " + outs[j].second + " " + outs[j].first +
+               " name the same file; give each output its own";
+    for (const auto& [in, in_option] : ins) {
+      if (in.empty() || (outs[i].second == std::string("--out-sum") && in_option == std::string("--resume")))
+        continue;
+      if (same_file(path, in))
+        return std::string(option) + " " + path + ": is the " + in_option + " input; write it elsewhere";
+    }
+  }
+  if (!cl.out_png.empty() && lower_extension(cl.out_png) != ".png")
+    return "--out " + cl.out_png + ": must end in .png";
+  if (!cl.out_float.empty()) {
+    const auto ext = lower_extension(cl.out_float);
+    if (ext != ".pfm" && ext != ".exr")
+      return "--out-float " + cl.out_float + ": must end in .pfm or .exr";
+    if (ext == ".exr" && !have_exr())
+      return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
+  }
+  if (cl.float_units != "scene" && cl.float_units != "display")
+    return "--float-units " + cl.float_units + ": expected scene or display";
+  if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
+      cl.edit_toggle != "fresnel")
+    return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
+  if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
+    return "--float-units " + cl.float_units + " is for --headless --out-float";
+  if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
+  if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
+      cl.out_sum.empty())
+    return "--headless needs at least one of --out, --out-float, --stats, --out-sum";
+  if (!cl.screenshot.empty() && lower_extension(cl.screenshot) != ".png")
+    return "--screenshot " + cl.screenshot + ": must end in .png";
+  return {};
+}
+
+}  // namespace whisker
