@@ -79,38 +79,74 @@ std::string line_column(const std::string& text, std::size_t byte) {
 
 fs::path source_root() { return fs::path(WHISKER_SOURCE_DIR); }
 
-// Finds a key given twice in one object, which the JSON parser would take
-// silently, keeping the last ({"width": 64, "width": 8192}): a callback of
-// the parse, remembering the keys of every object open and where it is.
-class DuplicateKeys {
+// The deepest nesting of arrays and objects a scene file may have. A scene
+// needs 5 levels (spheres[0].material.albedo); each level costs the parser
+// about 80 bytes a byte of input ("[[[[..."), so the cap bounds memory too.
+constexpr int kMaxDepth = 64;
+// The most JSON values (numbers, strings, arrays, objects, ...) a scene file
+// may hold. The parsed document takes up to about 100 bytes a value (an empty
+// object), so with the file's own bytes this bounds the reader's memory:
+// under 0.7 GB at the 256 MiB file cap. A sphere is about 12 values, so a
+// scene may hold some 350,000 of them.
+constexpr std::size_t kMaxValues = std::size_t(4) << 20;
+
+// Refuses nesting deeper than kMaxDepth, naming the line and column where it
+// goes past: one pass over the bytes, tracking strings and their escapes.
+void check_nesting(const std::string& text, const std::string& file) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    if (in_string) {
+      if (ch == '\\') ++i;
+      else if (ch == '"') in_string = false;
+    } else if (ch == '"') {
+      in_string = true;
+    } else if (ch == '[' || ch == '{') {
+      if (++depth > kMaxDepth)
+        throw SceneError(file + ":" + line_column(text, i) + ": arrays and objects nested deeper than " +
+                         std::to_string(kMaxDepth) + " levels");
+    } else if (ch == ']' || ch == '}') {
+      --depth;
+    }
+  }
+}
+
+// A first pass over the file with the parser's SAX interface, building
+// nothing: finds a key given twice in one object, which the JSON parser
+// would take silently, keeping the last ({"width": 64, "width": 8192}), and
+// counts the values. Linear in the file: each key is looked up once in the
+// set of its own object. (nlohmann's parse callback is not: on the end of
+// every object it rescans the enclosing array for discarded values.)
+class Prescan : public nlohmann::json_sax<json> {
  public:
-  bool operator()(int, json::parse_event_t event, json& parsed) {
-    using E = json::parse_event_t;
-    switch (event) {
-      case E::object_start:
-      case E::array_start:
-        element();
-        open_.push_back({event == E::object_start, {}, 0, {}});
-        break;
-      case E::object_end:
-      case E::array_end:
-        if (!open_.empty()) open_.pop_back();
-        break;
-      case E::key:
-        if (!open_.empty()) {
-          Open& o = open_.back();
-          o.key = parsed.is_string() ? parsed.get<std::string>() : std::string();
-          if (!o.keys.insert(o.key).second && found_.empty()) found_ = field(o.key);
-        }
-        break;
-      case E::value:
-        element();
-        break;
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override { return open(true); }
+  bool start_array(std::size_t) override { return open(false); }
+  bool end_object() override { return close(); }
+  bool end_array() override { return close(); }
+  bool key(string_t& k) override {
+    if (!open_.empty()) {
+      Open& o = open_.back();
+      o.key = k;
+      if (!o.keys.insert(k).second && found_.empty()) found_ = field(k);
     }
     return true;
   }
+  // Syntax errors are left to the second, building parse, which names the line.
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
   // "camera.width" of the first duplicate, or "".
   const std::string& found() const { return found_; }
+  bool too_many() const { return values_ > kMaxValues; }
 
  private:
   struct Open {
@@ -119,8 +155,18 @@ class DuplicateKeys {
     std::size_t index;       // the array's elements so far
     std::unordered_set<std::string> keys;
   };
-  void element() {
+  bool value() {
     if (!open_.empty() && !open_.back().object) ++open_.back().index;
+    return ++values_ <= kMaxValues;
+  }
+  bool open(bool object) {
+    if (!value()) return false;
+    open_.push_back({object, {}, 0, {}});
+    return true;
+  }
+  bool close() {
+    if (!open_.empty()) open_.pop_back();
+    return true;
   }
   // The path of `key` in the innermost object open.
   std::string field(const std::string& key) const {
@@ -140,6 +186,7 @@ class DuplicateKeys {
   }
   std::vector<Open> open_;
   std::string found_;
+  std::size_t values_ = 0;
 };
 
 }  // namespace
@@ -187,12 +234,19 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
 
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,
                   const std::string& mesh_override) {
+  check_nesting(text, file);
+  Prescan pre;
+  // On a syntax error the pass stops: the parse below names its line.
+  const bool well_formed = json::sax_parse(text, &pre);
+  if (pre.too_many())
+    throw SceneError(file + ": more than " + std::to_string(kMaxValues) +
+                     " values; not a scene file");
+  if (well_formed && !pre.found().empty())
+    throw SceneError(file + ": " + pre.found() + ": given twice; keep one");
+
   json j;
-  DuplicateKeys duplicates;
   try {
-    j = json::parse(text, [&duplicates](int depth, json::parse_event_t event, json& parsed) {
-      return duplicates(depth, event, parsed);
-    });
+    j = json::parse(text);
   } catch (const json::parse_error& e) {
     std::string msg = e.what();
     // Keep nlohmann's description, drop its "[json.exception...] parse error at ...:" prefix.
@@ -204,9 +258,6 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     if (auto bracket = msg.find("] "); bracket != std::string::npos) msg = msg.substr(bracket + 2);
     throw SceneError(file + ": invalid JSON: " + msg);
   }
-
-  if (!duplicates.found().empty())
-    throw SceneError(file + ": " + duplicates.found() + ": given twice; keep one");
 
   Scene scene;
   scene.source_path = file;
@@ -297,6 +348,11 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
   if (!in) throw SceneError(path.string() + ": cannot open scene file: " + std::strerror(errno));
   constexpr std::size_t kMaxSceneBytes = std::size_t(256) << 20;
   std::string text;
+  // Reserved when the size is known, so that growing never holds two copies.
+  if (fs::is_regular_file(st)) {
+    const auto size = fs::file_size(path, ec);
+    if (!ec && size <= kMaxSceneBytes) text.reserve(std::size_t(size));
+  }
   std::vector<char> buf(1 << 16);
   while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
     text.append(buf.data(), std::size_t(in.gcount()));

@@ -656,6 +656,45 @@ PY
     expect_rc 2
     expect_err "^whisker: loop-a.json: cannot open scene file: too many levels of symbolic links"
     ;;
+  scene-parse-linear)
+    # The duplicate-key check rescanned the enclosing array at the end of
+    # each object in it: 400,000 objects took 44 s, a file at the cap weeks.
+    # At the value cap (4 Mi values, here empty objects in one array) the
+    # scene loads within a generous time and memory; one more value is refused.
+    python3 -c "
+n = 4 * 1024 * 1024 - 6
+body = ','.join(['{}'] * n)
+open('big.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ']}')
+open('over.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ',{},{}]}')
+" || skip "python3 missing"
+    under_memory_cap 1000 timeout -s KILL 90 "$bin" --headless --scene big.json --quiet --frames 1 --spp 1 \
+      --stats s.json >out.txt 2>err.txt
+    rc=$?
+    [ "$rc" -ne 137 ] || fail "a scene of 4 Mi values took over 90 s to load"
+    expect_rc 0
+    run --headless --scene over.json --quiet --frames 1 --spp 1 --stats s.json
+    expect_rc 2
+    expect_err "^whisker: over.json: more than 4194304 values; not a scene file$"
+    ;;
+  scene-nesting-capped)
+    # 60 MB of "[[[[..." took 4.6 GB: nesting deeper than 64 levels is
+    # refused naming the line and column, before anything is built.
+    python3 -c "
+open('deep.json', 'w').write('{\"description\":\n' + '[' * 20000000 + ']' * 20000000 + '}')
+d = '{\"description\": ' + '[' * 63 + ']' * 63 + '}'
+open('ok.json', 'w').write(d)
+open('str.json', 'w').write('{\"description\": \"' + '[' * 100 + '\"}')
+" || skip "python3 missing"
+    under_memory_cap 400 timeout -s KILL 30 "$bin" --headless --scene deep.json --quiet --frames 1 \
+      --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: deep.json:2:64: arrays and objects nested deeper than 64 levels$"
+    for ok in ok str; do
+      run --headless --scene $ok.json --quiet --frames 1 --spp 1 --stats s.json
+      expect_rc 0
+    done
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;
