@@ -248,7 +248,9 @@ std::string closest(const std::string& word, const std::vector<std::string>& can
 int usage_error(const std::string& message) {
   // What a message quotes is cut where it is built; this bounds the rest.
   constexpr std::size_t kMax = 4000;
-  const std::string shown = message.size() > kMax ? cut_for_message(message, kMax) : message;
+  // Control characters of anything echoed (a path with a line break, an
+  // escape sequence in --out) are escaped here, once for every refusal.
+  const std::string shown = cut_for_message(message, kMax);
   std::fprintf(stderr, "whisker: %s\n", shown.c_str());
   return kUsageError;
 }

@@ -210,6 +210,19 @@ std::vector<std::string> list_scenes() {
   return names;
 }
 
+namespace {
+const char* file_kind(const fs::file_status& st) {
+  switch (st.type()) {
+    case fs::file_type::directory: return "a folder";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::block:
+    case fs::file_type::character: return "a device";
+    default: return "not a file";
+  }
+}
+}  // namespace
+
 fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
                       const std::string& field) {
   const fs::path p(path);
@@ -223,13 +236,21 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
     tried.push_back(source_root() / "assets" / p);
   }
   std::error_code ec;
-  for (const auto& t : tried)
-    if (fs::is_regular_file(t, ec)) return t.lexically_normal();
+  for (const auto& t : tried) {
+    const fs::file_status st = fs::status(t, ec);
+    if (fs::is_regular_file(st)) return t.lexically_normal();
+    // Something is there, but not a file to read a mesh from (a FIFO would
+    // block the reader, a folder or device is no OBJ): say so, not "not found".
+    if (fs::exists(st))
+      throw SceneError(field + ": mesh \"" + cut_for_message(t.lexically_normal().string()) +
+                       "\" is not a regular file (" + file_kind(st) + ")");
+  }
+  // One line: the places looked in, then what to do.
   std::string where;
-  for (const auto& t : tried) where += "\n  " + t.lexically_normal().string();
-  throw SceneError(field + ": mesh \"" + cut_for_message(path) + "\" not found; looked in:" + where +
-                   "\nput the file in one of these places, set WHISKER_ASSETS to its "
-                   "folder, or pass --mesh PATH");
+  for (const auto& t : tried)
+    where += (where.empty() ? "" : ", ") + cut_for_message(t.lexically_normal().string());
+  throw SceneError(field + ": mesh \"" + cut_for_message(path) + "\" not found (looked in " + where +
+                   "); put it there, set WHISKER_ASSETS to its folder, or pass --mesh PATH");
 }
 
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,

@@ -695,6 +695,60 @@ open('str.json', 'w').write('{\"description\": \"' + '[' * 100 + '\"}')
       expect_rc 0
     done
     ;;
+  messages-escaped)
+    # Every echoed user string is escaped where the line is written: a path
+    # with a line break gave 2-3 lines, --out passed a terminal escape
+    # through, a scene name (from the file or from a part) was printed raw,
+    # "mesh not found" took 4 lines and a FIFO mesh was "not found"; range
+    # errors printed the value to 6 digits (1e-320 as 9.99989e-321).
+    scene 16 16
+    one_line_no_esc() {
+      [ "$(wc -l <"${2:-err.txt}")" -le 1 ] || fail "$1: $(wc -l <"${2:-err.txt}") lines: $(head -c 300 "${2:-err.txt}")"
+      ! grep -qP '[\x00-\x08\x0b-\x1f\x7f]' "${2:-err.txt}" || fail "$1: a raw control character: $(head -c 300 "${2:-err.txt}" | od -c | head -5)"
+    }
+    run --headless --scene scene.json --quiet --frames 1 --out $'nodir\x1b]0;pwned\x07/o.png'
+    expect_rc 2
+    one_line_no_esc "--out with an escape"
+    expect_err '^whisker: --out nodir\\x1b\]0;pwned\\x07/o.png: folder'
+    mkdir $'a\nb'
+    run --headless --scene $'a\nb/x.json' --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "--scene with a line break"
+    expect_err '^whisker: .*a\\nb/x.json'
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "gone.obj"}]}' >gone.json
+    run --headless --scene gone.json --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "mesh not found"
+    expect_err '^whisker: gone.json: meshes\[0\].path: mesh "gone.obj" not found \(looked in gone.obj, .*assets/gone.obj\)'
+    mkfifo pipe.obj
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "pipe.obj"}]}' >pipe.json
+    run --headless --scene pipe.json --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "FIFO mesh"
+    expect_err '^whisker: pipe.json: meshes\[0\].path: mesh "pipe.obj" is not a regular file \(a FIFO\)$'
+    for pair in 'light|"intensity": 1e308|light.intensity: must be in \[0, 1e\+30\], got 1e\+308$' \
+                'camera|"fov": 1e-320|camera.fov: must be in \[1, 179\], got 1e-320$' \
+                'camera|"fov": 0.1|camera.fov: must be in \[1, 179\], got 0.1$'; do
+      IFS='|' read -r obj field want <<<"$pair"
+      echo "{\"$obj\": {$field}}" >range.json
+      run --headless --scene range.json --quiet --frames 1 --stats s.json
+      expect_rc 2
+      expect_err "^whisker: range.json: $want"
+    done
+    printf '{"name": "n\\u001b]0;pwned\\u0007\\nx\\u009b2J", "camera": {"width": 8, "height": 8}}' >named.json
+    run --headless --scene named.json --frames 1 --spp 1 --out-float $'o\x1bx.pfm'
+    expect_rc 0
+    one_line_no_esc "the summary line" out.txt
+    ! grep -q $'\xc2\x9b' out.txt || fail "the summary line holds a raw C1 control"
+    if have_exr; then
+      run --headless --scene named.json --quiet --spp 1 --samples 0:1 --out-sum p.exr
+      expect_rc 0
+      run merge p.exr --out m.png
+      expect_rc 0
+      one_line_no_esc "merge's summary (a scene name from a part)" out.txt
+      grep -q 'n\\x1b\]0;pwned\\x07\\nx' out.txt || fail "merge's summary: $(cat -v out.txt)"
+    fi
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;
