@@ -99,14 +99,17 @@ CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
   const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
   const CLI::Validator v(
       [=](std::string& text) -> std::string {
-        // from_chars, not strtod: no hex, no leading space or '+', as int_in.
+        // The one number reader of options and their lists (settings.h).
         double v = 0.0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (text.empty() || end != text.data() + text.size() ||
-            (ec != std::errc() && ec != std::errc::result_out_of_range) || std::isnan(v) ||
-            std::isinf(v))
+        if (!read_number(text, v)) {
+          // In full a number, but past double's range (1e400): a range error.
+          double big = 0.0;
+          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), big);
+          if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
+            return text + ": must be in " + range;
           return text + ": expected a number";
-        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+        }
+        if (v < lo || v > hi)
           return text + ": must be in " + range;
         return {};
       },
@@ -426,6 +429,11 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
+  // The viewer's scripted edit: a headless render would ignore it silently.
+  if (cl.headless && cl.edit_after >= 0) return "--edit-after needs the viewer; drop --headless";
+  if (cl.headless && !cl.edit_light.empty()) return "--edit-light needs the viewer; drop --headless";
+  if (!cl.edit_light.empty() && !parse_point(cl.edit_light))
+    return "--edit-light " + cl.edit_light + ": expected three finite numbers x,y,z";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
       cl.out_sum.empty())
     return "--headless needs at least one of --out, --out-float, --stats, --out-sum";

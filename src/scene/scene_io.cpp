@@ -8,6 +8,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <map>
+#include <tuple>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -320,6 +322,9 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   if (top.has("meshes")) {
     const json& arr = top.at("meshes");
     if (!arr.is_array()) top.fail("meshes", "must be an array");
+    std::map<std::string, std::shared_ptr<const ObjFile>> files;
+    std::map<std::tuple<std::string, float, double, double, double>, std::shared_ptr<const TriangleMesh>>
+        placements;
     for (std::size_t i = 0; i < arr.size(); ++i) {
       Fields f(arr[i], "meshes[" + std::to_string(i) + "]", file);
       f.only({"name", "path", "scale", "translate", "vertex_normals", "material"});
@@ -334,9 +339,18 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
         f.fail(f.field("material.type"), "hollow_glass is for spheres only");
       if (!mesh_override.empty()) m.path = fs::absolute(mesh_override).string();
       const fs::path resolved = resolve_mesh(m.path, base_dir, file + ": " + f.field("path"));
+      m.file = resolved.string();
       try {
-        m.mesh = std::make_shared<const TriangleMesh>(
-            load_obj(resolved.string(), m.scale, m.translate));
+        // A file named several times is read once; the same placement of it
+        // is one mesh, shared (memory follows the distinct meshes).
+        std::error_code ec;
+        fs::path id = fs::canonical(resolved, ec);
+        if (ec) id = resolved;
+        auto& file_read = files[id.string()];
+        if (!file_read) file_read = std::make_shared<const ObjFile>(read_obj(resolved.string()));
+        auto& placed = placements[{id.string(), m.scale, m.translate.x, m.translate.y, m.translate.z}];
+        if (!placed) placed = std::make_shared<const TriangleMesh>(place_obj(*file_read, m.scale, m.translate));
+        m.mesh = placed;
       } catch (const MeshError& e) {
         throw SceneError(file + ": " + f.field("path") + ": " + e.what());
       }
@@ -403,7 +417,22 @@ std::string camera_to_json(const Camera& camera) {
   return json{{"camera", to_json(camera)}}.dump(2);
 }
 
-std::string scene_to_json(const Scene& s) {
+namespace {
+// The path of the OBJ `m` was loaded from, as a file in `dir` should name it.
+std::string mesh_path_from(const MeshObject& m, const fs::path& dir) {
+  if (m.file.empty()) return m.path;
+  std::error_code ec;
+  // Canonical on both sides: ".." from a folder reached by a symbolic link
+  // goes up from where the link points, as the kernel resolves it.
+  const fs::path target = fs::weakly_canonical(fs::absolute(m.file, ec), ec);
+  if (ec) return fs::absolute(m.file).lexically_normal().string();
+  const fs::path from = fs::weakly_canonical(fs::absolute(dir.empty() ? fs::path(".") : dir, ec), ec);
+  const fs::path rel = ec ? fs::path() : target.lexically_relative(from);
+  return rel.empty() ? target.string() : rel.string();
+}
+}  // namespace
+
+std::string scene_to_json(const Scene& s, const fs::path& file) {
   json j;
   j["name"] = s.name;
   j["camera"] = to_json(s.camera);
@@ -419,7 +448,9 @@ std::string scene_to_json(const Scene& s) {
   if (!s.meshes.empty()) {
     j["meshes"] = json::array();
     for (const auto& m : s.meshes)
-      j["meshes"].push_back({{"name", m.name}, {"path", m.path}, {"scale", m.scale},
+      j["meshes"].push_back({{"name", m.name},
+                             {"path", file.empty() ? m.path : mesh_path_from(m, file.parent_path())},
+                             {"scale", m.scale},
                              {"translate", to_json(m.translate)},
                              {"vertex_normals", m.vertex_normals},
                              {"material", to_json(m.material)}});

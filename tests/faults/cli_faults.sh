@@ -749,6 +749,53 @@ open('str.json', 'w').write('{\"description\": \"' + '[' * 100 + '\"}')
       grep -q 'n\\x1b\]0;pwned\\x07\\nx' out.txt || fail "merge's summary: $(cat -v out.txt)"
     fi
     ;;
+  list-options-one-reader)
+    # --light " 1,2,3", "+1,2,3" and "1, 2, 3" were taken where --intensity
+    # refuses " 5" and "+5": every number of a list option is read by the same
+    # reader. --edit-light and --edit-after were ignored with --headless.
+    scene 8 8
+    for opt in --light --split-weights; do
+      for bad in ' 1,1,1' '+1,1,1' '1, 1, 1' '1,1,1 ' '1,1' '1,1,1,1' '0x1,1,1' 'nan,1,1' '1,,1' '1e400,1,1'; do
+        run --headless --scene scene.json --quiet --frames 1 --stats s.json "$opt" "$bad"
+        expect_rc 2
+        expect_err "^whisker: $opt "
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "$opt '$bad': more than one line"
+      done
+      run --headless --scene scene.json --quiet --frames 1 --stats s.json "$opt" '0.5,1e-1,1'
+      expect_rc 0
+    done
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --light=-1.5,2e3,-0
+    expect_rc 0
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --edit-light 1,2,3
+    expect_rc 2
+    expect_err "^whisker: --edit-light needs the viewer; drop --headless$"
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --edit-after 2
+    expect_rc 2
+    expect_err "^whisker: --edit-after needs the viewer; drop --headless$"
+    run --scene scene.json --frames 1 --edit-after 1 --edit-light ' 1,2,3'
+    expect_rc 2
+    expect_err "^whisker: --edit-light  1,2,3: expected three finite numbers"
+    ;;
+  obj-memory-bounded)
+    # An OBJ was read whole before its first line was checked: a 3 GB sparse
+    # file took 6.3 GB. Its size is checked against the 256 MiB cap before
+    # reading, and the lines are checked as they are read, so a bad line
+    # early in a large file ends the read there.
+    scene 8 8
+    truncate -s 3G sparse.obj
+    { printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'; } >head.obj
+    cp head.obj nul.obj && truncate -s 200M nul.obj
+    under_memory_cap 150 timeout -s KILL 20 "$bin" --headless --scene cat --mesh "$PWD/sparse.obj" --quiet \
+      --frames 1 --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: .*sparse.obj: 3221225472 bytes; an OBJ file may have at most 256 MiB$"
+    under_memory_cap 150 timeout -s KILL 20 "$bin" --headless --scene cat --mesh "$PWD/nul.obj" --quiet \
+      --frames 1 --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: .*nul.obj:5: binary data, not a text OBJ file$"
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;
