@@ -4,13 +4,18 @@
 
 #include <filesystem>
 
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "geometry/mesh.h"
 #include "render/splitting.h"
 #include "scene/scene_io.h"
+
+#include <unistd.h>
 
 using namespace whisker;
 
@@ -272,4 +277,52 @@ TEST(SceneFiles, PositionsKeepTheDigitsTheFileWrote) {
   EXPECT_EQ(back.camera.look_at, s.camera.look_at);
   EXPECT_EQ(back.light.position, s.light.position);
   EXPECT_EQ(back.spheres[0].center, s.spheres[0].center);
+}
+
+// The viewer's Save scene writes into another folder than the scene's: the
+// mesh paths must lead from there to the OBJs loaded ("kitty.obj" beside the
+// original scene was written as "kitty.obj" and did not load).
+TEST(SceneFiles, SavedSceneFindsItsMeshesFromAnotherFolder) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("whisker-save-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "orig");
+  fs::create_directories(root / "saved" / "deeper");
+  fs::copy_file(resolve_mesh("cat.obj", {}, "cat"), root / "orig" / "kitty.obj");
+  std::ifstream in(resolve_scene("cat"));
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t at = text.find("\"cat.obj\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 9, "\"kitty.obj\"");
+  std::ofstream(root / "orig" / "cat.json") << text;
+  const Scene cat = load_scene(root / "orig" / "cat.json");
+  ASSERT_EQ(cat.meshes.size(), 1u);
+
+  for (const fs::path out : {root / "saved" / "deeper" / "cat.json", root / "cat.json"}) {
+    std::ofstream(out) << scene_to_json(cat, out);
+    Scene back;
+    ASSERT_NO_THROW(back = load_scene(out)) << out;
+    ASSERT_EQ(back.meshes.size(), 1u);
+    EXPECT_EQ(fs::path(back.meshes[0].path).is_relative(), true) << back.meshes[0].path;
+    EXPECT_EQ(fs::canonical(back.meshes[0].file), fs::canonical(root / "orig" / "kitty.obj"));
+    EXPECT_EQ(back.meshes[0].mesh->positions, cat.meshes[0].mesh->positions);
+  }
+  fs::remove_all(root);
+}
+
+// A mesh named several times at one placement is one mesh in memory (it was
+// loaded once per mention: 8 copies of the cat for a scene naming it 8
+// times); other placements of the same file get their own triangles.
+TEST(SceneFiles, AMeshNamedManyTimesIsLoadedOnce) {
+  std::string meshes;
+  for (int i = 0; i < 8; ++i)
+    meshes += std::string(i ? ", " : "") + R"({"path": "cat.obj", "translate": [)" +
+              (i < 6 ? "0" : std::to_string(i)) + ", 0, 0]}";
+  const Scene s = parse_scene(R"({"meshes": [)" + meshes + "]}", "many.json");
+  ASSERT_EQ(s.meshes.size(), 8u);
+  for (int i = 1; i < 6; ++i) EXPECT_EQ(s.meshes[i].mesh.get(), s.meshes[0].mesh.get()) << i;
+  EXPECT_NE(s.meshes[6].mesh.get(), s.meshes[0].mesh.get());
+  EXPECT_NE(s.meshes[7].mesh.get(), s.meshes[6].mesh.get());
+  EXPECT_EQ(s.meshes[6].mesh->triangles, s.meshes[0].mesh->triangles);
+  EXPECT_EQ(s.meshes[7].mesh->exact[0].x, s.meshes[0].mesh->exact[0].x + 7.0);
 }

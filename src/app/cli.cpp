@@ -83,14 +83,17 @@ CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
   const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
   const CLI::Validator v(
       [=](std::string& text) -> std::string {
-        // from_chars, not strtod: no hex, no leading space or '+', as int_in.
+        // The one number reader of options and their lists (settings.h).
         double v = 0.0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (text.empty() || end != text.data() + text.size() ||
-            (ec != std::errc() && ec != std::errc::result_out_of_range) || std::isnan(v) ||
-            std::isinf(v))
+        if (!read_number(text, v)) {
+          // In full a number, but past double's range (1e400): a range error.
+          double big = 0.0;
+          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), big);
+          if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
+            return text + ": must be in " + range;
           return text + ": expected a number";
-        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+        }
+        if (v < lo || v > hi)
           return text + ": must be in " + range;
         return {};
       },
@@ -243,7 +246,9 @@ std::string closest(const std::string& word, const std::vector<std::string>& can
 int usage_error(const std::string& message) {
   // What a message quotes is cut where it is built; this bounds the rest.
   constexpr std::size_t kMax = 4000;
-  const std::string shown = message.size() > kMax ? cut_for_message(message, kMax) : message;
+  // Control characters of anything echoed (a path with a line break, an
+  // escape sequence in --out) are escaped here, once for every refusal.
+  const std::string shown = cut_for_message(message, kMax);
   std::fprintf(stderr, "whisker: %s\n", shown.c_str());
   return kUsageError;
 }

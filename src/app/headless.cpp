@@ -71,14 +71,12 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   std::printf(
       "%s %dx%d: %llu spp in %.3f s, %.3g samples/s, %.3g rays/s, %llu NaN/Inf dropped, %d "
       "threads",
-      scene.name.c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
+      printable(scene.name).c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
       secs > 0 ? samples / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
       (unsigned long long)snap.nan_count, threads);
   if (exact) std::printf(", exact (deterministic estimate: every pass is the same)");
-  if (!o.out_png.empty()) std::printf(" -> %s", o.out_png.c_str());
-  if (!o.out_float.empty()) std::printf(" -> %s", o.out_float.c_str());
-  if (!o.out_sum.empty()) std::printf(" -> %s", o.out_sum.c_str());
-  if (!o.stats_json.empty()) std::printf(" -> %s", o.stats_json.c_str());
+  for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.stats_json})
+    if (!out->empty()) std::printf(" -> %s", printable(*out).c_str());
   std::printf("\n");
 
   if (!o.stats_json.empty()) {
@@ -138,7 +136,7 @@ std::string duration(double s) {
 class Progress {
  public:
   Progress(std::string name, std::uint64_t target, bool tty, double period)
-      : name_(std::move(name)), target_(target), tty_(tty), period_(period) {}
+      : name_(printable(name)), target_(target), tty_(tty), period_(period) {}
 
   void update(double elapsed, const Snapshot& snap, std::uint64_t gen,
               const ProgressiveRenderer::PassProgress& pass) {

@@ -8,6 +8,7 @@
 
 #include "app/cli.h"
 #include "app/shards.h"
+#include "scene/quote.h"
 #include "render/accumulation_io.h"
 #include "render/image_io.h"
 #include "render/stats_io.h"
@@ -90,11 +91,11 @@ int run_merge(int argc, char** argv) {
       const std::string msg = "merge: samples " + ranges_to_string(gaps) +
                               " are missing (the parts hold " + ranges_to_string(acc.ranges) + ")";
       if (!o.partial) return usage_error(msg + "; render them, or pass --partial");
-      std::fprintf(stderr, "whisker: warning: %s; writing the partial merge\n", msg.c_str());
+      std::fprintf(stderr, "whisker: warning: %s; writing the partial merge\n", printable(msg).c_str());
     }
     write(o, acc);
     std::printf("%s %dx%d: merged %zu part%s, samples %s (%llu spp, %llu passes)\n",
-                acc.id.scene.c_str(), acc.width, acc.height, o.parts.size(),
+                printable(acc.id.scene).c_str(), acc.width, acc.height, o.parts.size(),
                 o.parts.size() == 1 ? "" : "s",
                 ranges_to_string(acc.ranges).c_str(), (unsigned long long)acc.samples(),
                 (unsigned long long)acc.passes);

@@ -114,6 +114,16 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
+  // The viewer's scripted edits: a headless render would ignore them silently.
+  const std::pair<bool, const char*> viewer_only[] = {{cl.edit_after >= 0, "--edit-after"},
+                                                      {!cl.edit_light.empty(), "--edit-light"},
+                                                      {!cl.edit_orbit.empty(), "--edit-orbit"},
+                                                      {!cl.edit_toggle.empty(), "--edit-toggle"},
+                                                      {!cl.edit_log.empty(), "--edit-log"}};
+  for (const auto& [set, option] : viewer_only)
+    if (cl.headless && set) return std::string(option) + " needs the viewer; drop --headless";
+  if (!cl.edit_light.empty() && !parse_point(cl.edit_light))
+    return "--edit-light " + cl.edit_light + ": expected three finite numbers x,y,z";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
       cl.out_sum.empty())
     return "--headless needs at least one of --out, --out-float, --stats, --out-sum";

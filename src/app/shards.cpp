@@ -1,4 +1,5 @@
 #include "app/shards.h"
+#include "scene/quote.h"
 
 #include <algorithm>
 #include <chrono>
@@ -186,7 +187,8 @@ void Checkpointer::run() {
       written = snap.spp;
       warned.clear();
     } catch (const ImageError& e) {
-      if (warned != e.what()) std::fprintf(stderr, "whisker: warning: checkpoint: %s\n", e.what());
+      if (warned != e.what()) std::fprintf(stderr, "whisker: warning: checkpoint: %s\n",
+                                          printable(e.what()).c_str());
       warned = e.what();
     }
   }

@@ -133,9 +133,8 @@ class Fields {
   void check_range(const std::string& f, double x, double lo, double hi) const {
     if (!std::isfinite(x)) fail(f, "must be finite");
     if (x < lo || x > hi) {
-      std::ostringstream s;
-      s << "must be in [" << lo << ", " << hi << "], got " << x;
-      fail(f, s.str());
+      // The value as the file wrote it (shortest round trip of the double).
+      fail(f, "must be in [" + shortest(lo) + ", " + shortest(hi) + "], got " + shortest(x));
     }
   }
 

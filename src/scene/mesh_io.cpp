@@ -1,5 +1,6 @@
 // OBJ loading: a validating line scan that names the file and line of bad
 // input, then tinyobjloader for the parse and polygon triangulation.
+#include <algorithm>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -54,10 +55,19 @@ bool known_keyword(std::string_view k) {
   return false;
 }
 
+// The largest OBJ file read. Loading takes up to about 12 bytes of memory a
+// byte of file (the text, tinyobjloader's copy and arrays, the vertices in
+// double and float): about 3 GB at this cap.
+constexpr std::uintmax_t kMaxObjBytes = std::uintmax_t(256) << 20;
+
+// The longest line (a face of kMaxFaceCorners corners takes under 30 KB).
+constexpr std::size_t kMaxObjLine = std::size_t(1) << 20;
+
 // The most corners a face may have (a 1,000-gon triangulates in about 3 ms).
 constexpr int kMaxFaceCorners = 1000;
 
 struct Scan {
+  std::size_t line_no = 0;       // lines scanned so far
   std::size_t vertices = 0, faces = 0;
   long max_index = 0;            // largest positive vertex index seen
   std::size_t max_index_line = 0;
@@ -79,11 +89,13 @@ void three_numbers(std::string_view& rest, const std::string& path, std::size_t 
   }
 }
 
-// Checks every line: known keyword, finite numeric vertex coordinates, face
-// indices in range (negative ones relative to the vertices read so far).
-Scan scan(const std::string& path, const std::string& text) {
-  Scan s;
-  std::size_t line_no = 0, pos = 0;
+// Checks every line of `text` (whole lines, the last one's '\n' optional):
+// known keyword, finite numeric vertex coordinates, face indices in range
+// (negative ones relative to the vertices read so far). Called on each piece
+// of the file as it is read, so that the first bad line ends the read.
+void scan_lines(Scan& s, const std::string& path, std::string_view text) {
+  std::size_t& line_no = s.line_no;
+  std::size_t pos = 0;
   while (pos < text.size()) {
     std::size_t end = text.find('\n', pos);
     if (end == std::string::npos) end = text.size();
@@ -135,12 +147,15 @@ Scan scan(const std::string& path, const std::string& text) {
       s.mtllibs.emplace_back(trim(rest));
     }
   }
+}
+
+// What only the whole file can say.
+void scan_end(const Scan& s, const std::string& path) {
   if (s.max_index > 0 && static_cast<std::size_t>(s.max_index) > s.vertices)
     fail(path, s.max_index_line, "face index " + std::to_string(s.max_index) +
                                      " out of range (" + std::to_string(s.vertices) +
                                      " vertices)");
   if (s.faces == 0) fail(path, 0, "no faces (empty or not an OBJ mesh)");
-  return s;
 }
 
 // The decimal number the scene file wrote for a value the scene reader keeps
@@ -156,25 +171,60 @@ double written_value(float x) {
 }
 
 // The file's bytes, without a UTF-8 byte order mark (some Windows exporters
-// write one); never empty.
-std::string read_obj_text(const std::string& path) {
+// write one); never empty; scanned into `s` piece by piece as they are read,
+// so that memory follows the bytes read up to the first bad line. A file
+// over kMaxObjBytes is refused before reading (its size), or when it grows
+// past it.
+std::string read_obj_text(const std::string& path, Scan& s) {
+  std::error_code ec;
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxObjBytes)
+    fail(path, 0, std::to_string(size) + " bytes; an OBJ file may have at most " +
+                      std::to_string(kMaxObjBytes >> 20) + " MiB");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, 0, std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream buf;
-  buf << in.rdbuf();
-  std::string text = buf.str();
-  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  std::string text;  // grown as read (not reserved: a bad line may end it early)
+  std::vector<char> buf(1 << 20);
+  std::size_t scanned = 0;  // text[0, scanned) holds whole lines, checked
+  bool first = true;
+  while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
+    text.append(buf.data(), std::size_t(in.gcount()));
+    if (text.size() > kMaxObjBytes)
+      fail(path, 0, "over " + std::to_string(kMaxObjBytes >> 20) + " MiB; not a mesh to load");
+    if (first && text.size() >= 3) {
+      if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+      first = false;
+    }
+    const std::size_t last = text.rfind('\n');
+    if (last != std::string::npos && last + 1 > scanned) {
+      scan_lines(s, path, std::string_view(text).substr(scanned, last + 1 - scanned));
+      scanned = last + 1;
+    }
+    // The line not yet ended: binary bytes or an endless line end the read now.
+    const std::size_t tail = std::max(scanned, text.size() - std::size_t(in.gcount()));
+    for (std::size_t i = tail; i < text.size(); ++i) {
+      const unsigned char c = static_cast<unsigned char>(text[i]);
+      if (c == 0 || (c < 0x20 && c != '\t' && c != '\r' && c != '\n') || c == 0x7f)
+        fail(path, s.line_no + 1, "binary data, not a text OBJ file");
+    }
+    if (text.size() - scanned > kMaxObjLine)
+      fail(path, s.line_no + 1, "line longer than " + std::to_string(kMaxObjLine >> 20) + " MiB");
+  }
+  if (in.bad()) fail(path, 0, std::string("cannot read file: ") + std::strerror(errno));
+  if (first && text == "\xEF\xBB\xBF") text.clear();
+  scan_lines(s, path, std::string_view(text).substr(scanned));
   if (text.empty()) fail(path, 0, "file is empty");
+  scan_end(s, path);
   return text;
 }
 
 }  // namespace
 
-TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
-  const std::string text = read_obj_text(path);
-  const Scan s = scan(path, text);
+ObjFile read_obj(const std::string& path) {
+  Scan s;
+  const std::string text = read_obj_text(path, s);
 
-  TriangleMesh mesh;
+  ObjFile obj;
+  obj.path = path;
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   for (const std::string& lib : s.mtllibs) {
     // The error_code form: a name over NAME_MAX, a symbolic link loop or a
@@ -183,8 +233,8 @@ TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& tr
     if (std::filesystem::exists(dir / lib, ec)) continue;
     if (ec && ec != std::errc::no_such_file_or_directory)
       fail(path, 0, "material library '" + cut_for_message(lib) + "': " + ec.message());
-    mesh.warnings.push_back(path + ": material library '" + cut_for_message(lib) +
-                            "' not found; materials ignored");
+    obj.warnings.push_back(path + ": material library '" + cut_for_message(lib) +
+                           "' not found; materials ignored");
   }
 
   // Materials come from the scene file, so the library is never read.
@@ -204,24 +254,12 @@ TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& tr
   // tinyobjloader reads floats (a 1/16 grid at 1e6): the coordinates come
   // from the scan's double reading instead, in the same order.
   if (s.coords.size() != 3 * nv) fail(path, 0, "tinyobjloader read a different vertex count");
-  mesh.positions.resize(nv);
-  mesh.exact.resize(nv);
-  const double sc = written_value(scale);
-  const glm::dvec3 tr = translate;  // double, as the scene file wrote it
-  for (std::size_t i = 0; i < nv; ++i) {
-    glm::dvec3& x = mesh.exact[i];
-    for (int k = 0; k < 3; ++k) x[k] = std::fma(s.coords[3 * i + k], sc, tr[k]);
-    mesh.positions[i] = vec3(x);
-    if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
-        !std::isfinite(mesh.positions[i].z))
-      fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
-  }
+  obj.coords = std::move(s.coords);
   const std::size_t nn = attrib.normals.size() / 3;
-  mesh.normals.resize(nn);
+  obj.normals.resize(nn);
   for (std::size_t i = 0; i < nn; ++i)
-    mesh.normals[i] = vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
+    obj.normals[i] = vec3(attrib.normals[3 * i], attrib.normals[3 * i + 1], attrib.normals[3 * i + 2]);
 
-  bool all_normals = nn > 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const auto& idx = shape.mesh.indices;
     std::size_t at = 0;
@@ -234,27 +272,56 @@ TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& tr
         if (vi < 0 || static_cast<std::size_t>(vi) >= nv) ok = false;
         if (ni < 0 || static_cast<std::size_t>(ni) >= nn) has_n = false;
         tri[k] = static_cast<unsigned>(vi);
-        nrm[k] = static_cast<unsigned>(ni);
+        nrm[k] = has_n ? static_cast<unsigned>(ni) : 0u;
       }
       at += 3;
       if (!ok) fail(path, 0, "face index out of range");
-      // Zero area: the cross product of two edges of the double-precision
-      // vertices (a mesh far from the origin is not flattened by float).
-      const glm::dvec3 p0(mesh.exact[tri[0]]), p1(mesh.exact[tri[1]]), p2(mesh.exact[tri[2]]);
-      const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
-      const glm::dvec3 c(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
-                         e1.x * e2.y - e1.y * e2.x);
-      if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
-        ++mesh.dropped_degenerate;
-        continue;
-      }
-      mesh.triangles.push_back(tri);
-      mesh.normal_idx.push_back(nrm);
-      all_normals = all_normals && has_n;
+      obj.triangles.push_back(tri);
+      obj.normal_idx.push_back(nrm);
+      obj.has_normals.push_back(has_n);
     }
   }
+  return obj;
+}
+
+TriangleMesh place_obj(const ObjFile& obj, float scale, const glm::dvec3& translate) {
+  const std::string& path = obj.path;
+  TriangleMesh mesh;
+  mesh.warnings = obj.warnings;
+  const std::size_t nv = obj.coords.size() / 3;
+  mesh.positions.resize(nv);
+  mesh.exact.resize(nv);
+  const double sc = written_value(scale);
+  const glm::dvec3 tr = translate;  // double, as the scene file wrote it
+  for (std::size_t i = 0; i < nv; ++i) {
+    glm::dvec3& x = mesh.exact[i];
+    for (int k = 0; k < 3; ++k) x[k] = std::fma(obj.coords[3 * i + k], sc, tr[k]);
+    mesh.positions[i] = vec3(x);
+    if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
+        !std::isfinite(mesh.positions[i].z))
+      fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
+  }
+  mesh.normals = obj.normals;
+  bool all_normals = !obj.normals.empty();
+  for (std::size_t t = 0; t < obj.triangles.size(); ++t) {
+    const glm::uvec3 tri = obj.triangles[t];
+    // Zero area: the cross product of two edges of the double-precision
+    // vertices (a mesh far from the origin is not flattened by float).
+    const glm::dvec3 p0(mesh.exact[tri[0]]), p1(mesh.exact[tri[1]]), p2(mesh.exact[tri[2]]);
+    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
+    const glm::dvec3 c(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
+                       e1.x * e2.y - e1.y * e2.x);
+    if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
+      ++mesh.dropped_degenerate;
+      continue;
+    }
+    mesh.triangles.push_back(tri);
+    mesh.normal_idx.push_back(obj.normal_idx[t]);
+    all_normals = all_normals && obj.has_normals[t];
+  }
   if (!all_normals) {
-    if (nn > 0) mesh.warnings.push_back(path + ": some faces lack normals; vertex normals ignored");
+    if (!obj.normals.empty())
+      mesh.warnings.push_back(path + ": some faces lack normals; vertex normals ignored");
     mesh.normals.clear();
     mesh.normal_idx.clear();
   }
@@ -263,6 +330,10 @@ TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& tr
                             " zero-area triangles");
   if (mesh.triangles.empty()) fail(path, 0, "no triangles with non-zero area");
   return mesh;
+}
+
+TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {
+  return place_obj(read_obj(path), scale, translate);
 }
 
 }  // namespace whisker

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh.h"
 
@@ -13,6 +14,22 @@ namespace whisker {
 struct MeshError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+// An OBJ file read and checked, not yet placed: the vertices as the file
+// wrote them (in double), the triangles with their normal indices. A scene
+// that names one file several times reads it once and places it for each.
+struct ObjFile {
+  std::string path;
+  std::vector<double> coords;        // x, y, z of each vertex
+  std::vector<glm::uvec3> triangles;
+  std::vector<glm::uvec3> normal_idx;
+  std::vector<bool> has_normals;      // per triangle: all three corners have one
+  std::vector<vec3> normals;
+  std::vector<std::string> warnings;
+};
+ObjFile read_obj(const std::string& path);
+// The mesh of `obj` with p' = p * scale + translate, zero-area triangles dropped.
+TriangleMesh place_obj(const ObjFile& obj, float scale, const glm::dvec3& translate);
 
 // Loads an OBJ file (polygons triangulated, negative indices allowed, missing
 // material library a warning), applies p' = p * scale + translate.

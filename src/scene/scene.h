@@ -51,6 +51,7 @@ struct TriangleMesh;  // geometry/mesh.h
 struct MeshObject {
   std::string name;
   std::string path;     // as written in the scene file
+  std::string file;     // the OBJ it resolved to and was loaded from (empty if not loaded)
   float scale = 1.0f;   // applied first
   dvec3 translate{0.0};  // then this
   bool vertex_normals = false;  // shade with the file's normals (else flat)

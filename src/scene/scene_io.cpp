@@ -9,12 +9,15 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <map>
+#include <tuple>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "scene/json_fields.h"
+#include "scene/json_prescan.h"
 #include "scene/mesh_io.h"
 #include "scene/settings_json.h"
 
@@ -65,18 +68,26 @@ void read_camera(const Fields& c, Camera& cam) {
     c.fail(c.field("up"), "must not be parallel to the view direction");
 }
 
-std::string line_column(const std::string& text, std::size_t byte) {
-  std::size_t line = 1, col = 1;
-  for (std::size_t i = 0; i < byte && i < text.size(); ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      col = 1;
-    } else {
-      ++col;
-    }
+// The meshes a scene has loaded: each file read once, each placement of it
+// built once (memory follows the distinct meshes, not the mentions).
+class LoadedMeshes {
+ public:
+  std::shared_ptr<const TriangleMesh> get(const fs::path& resolved, float scale, const dvec3& tr) {
+    std::error_code ec;
+    fs::path id = fs::canonical(resolved, ec);
+    if (ec) id = resolved;
+    auto& file = files_[id.string()];
+    if (!file) file = std::make_shared<const ObjFile>(read_obj(resolved.string()));
+    auto& placed = placements_[{id.string(), scale, tr.x, tr.y, tr.z}];
+    if (!placed) placed = std::make_shared<const TriangleMesh>(place_obj(*file, scale, tr));
+    return placed;
   }
-  return std::to_string(line) + ":" + std::to_string(col);
-}
+
+ private:
+  std::map<std::string, std::shared_ptr<const ObjFile>> files_;
+  std::map<std::tuple<std::string, float, double, double, double>, std::shared_ptr<const TriangleMesh>>
+      placements_;
+};
 
 // The data folder next to the running binary: <bin>/../share/whisker when
 // installed, <bin>/assets in a build tree (a link the build makes to the
@@ -100,69 +111,6 @@ void add_unique(std::vector<fs::path>& dirs, const fs::path& dir) {
     if (d == dir || fs::equivalent(d, dir, ec)) return;
   dirs.push_back(dir);
 }
-
-// Finds a key given twice in one object, which the JSON parser would take
-// silently, keeping the last ({"width": 64, "width": 8192}): a callback of
-// the parse, remembering the keys of every object open and where it is.
-class DuplicateKeys {
- public:
-  bool operator()(int, json::parse_event_t event, json& parsed) {
-    using E = json::parse_event_t;
-    switch (event) {
-      case E::object_start:
-      case E::array_start:
-        element();
-        open_.push_back({event == E::object_start, {}, 0, {}});
-        break;
-      case E::object_end:
-      case E::array_end:
-        if (!open_.empty()) open_.pop_back();
-        break;
-      case E::key:
-        if (!open_.empty()) {
-          Open& o = open_.back();
-          o.key = parsed.is_string() ? parsed.get<std::string>() : std::string();
-          if (!o.keys.insert(o.key).second && found_.empty()) found_ = field(o.key);
-        }
-        break;
-      case E::value:
-        element();
-        break;
-    }
-    return true;
-  }
-  // "camera.width" of the first duplicate, or "".
-  const std::string& found() const { return found_; }
-
- private:
-  struct Open {
-    bool object;
-    std::string key;         // the object's key being read
-    std::size_t index;       // the array's elements so far
-    std::unordered_set<std::string> keys;
-  };
-  void element() {
-    if (!open_.empty() && !open_.back().object) ++open_.back().index;
-  }
-  // The path of `key` in the innermost object open.
-  std::string field(const std::string& key) const {
-    // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "." + s.
-    std::string path;
-    for (std::size_t i = 0; i + 1 < open_.size(); ++i) {
-      if (open_[i].object) {
-        if (!path.empty()) path.push_back('.');
-        path.append(cut_for_message(open_[i].key, 60));
-      } else {
-        path.push_back('[');
-        path.append(std::to_string(open_[i].index - 1)).push_back(']');
-      }
-    }
-    if (!path.empty()) path.push_back('.');
-    return path.append(cut_for_message(key));
-  }
-  std::vector<Open> open_;
-  std::string found_;
-};
 
 }  // namespace
 
@@ -218,6 +166,19 @@ std::vector<std::string> list_scenes() {
   return names;
 }
 
+namespace {
+const char* file_kind(const fs::file_status& st) {
+  switch (st.type()) {
+    case fs::file_type::directory: return "a folder";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    case fs::file_type::block:
+    case fs::file_type::character: return "a device";
+    default: return "not a file";
+  }
+}
+}  // namespace
+
 fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
                       const std::string& field) {
   const fs::path p(path);
@@ -229,23 +190,38 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
     for (const fs::path& a : asset_dirs()) tried.push_back(a / p);
   }
   std::error_code ec;
-  for (const auto& t : tried)
-    if (fs::is_regular_file(t, ec)) return t.lexically_normal();
+  for (const auto& t : tried) {
+    const fs::file_status st = fs::status(t, ec);
+    if (fs::is_regular_file(st)) return t.lexically_normal();
+    // Something is there, but not a file to read a mesh from (a FIFO would
+    // block the reader, a folder or device is no OBJ): say so, not "not found".
+    if (fs::exists(st))
+      throw SceneError(field + ": mesh \"" + cut_for_message(t.lexically_normal().string()) +
+                       "\" is not a regular file (" + file_kind(st) + ")");
+  }
+  // One line: the places looked in, then what to do.
   std::string where;
-  for (const auto& t : tried) where += "\n  " + t.lexically_normal().string();
-  throw SceneError(field + ": mesh \"" + cut_for_message(path) + "\" not found; looked in:" + where +
-                   "\nput the file in one of these places, set WHISKER_ASSETS to its "
-                   "folder, or pass --mesh PATH");
+  for (const auto& t : tried)
+    where += (where.empty() ? "" : ", ") + cut_for_message(t.lexically_normal().string());
+  throw SceneError(field + ": mesh \"" + cut_for_message(path) + "\" not found (looked in " + where +
+                   "); put it there, set WHISKER_ASSETS to its folder, or pass --mesh PATH");
 }
 
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,
                   const std::string& mesh_override) {
+  check_nesting(text, file);
+  Prescan pre;
+  // On a syntax error the pass stops: the parse below names its line.
+  const bool well_formed = json::sax_parse(text, &pre);
+  if (pre.too_many())
+    throw SceneError(file + ": more than " + std::to_string(kMaxValues) +
+                     " values; not a scene file");
+  if (well_formed && !pre.found().empty())
+    throw SceneError(file + ": " + pre.found() + ": given twice; keep one");
+
   json j;
-  DuplicateKeys duplicates;
   try {
-    j = json::parse(text, [&duplicates](int depth, json::parse_event_t event, json& parsed) {
-      return duplicates(depth, event, parsed);
-    });
+    j = json::parse(text);
   } catch (const json::parse_error& e) {
     std::string msg = e.what();
     // Keep nlohmann's description, drop its "[json.exception...] parse error at ...:" prefix.
@@ -257,9 +233,6 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
     if (auto bracket = msg.find("] "); bracket != std::string::npos) msg = msg.substr(bracket + 2);
     throw SceneError(file + ": invalid JSON: " + msg);
   }
-
-  if (!duplicates.found().empty())
-    throw SceneError(file + ": " + duplicates.found() + ": given twice; keep one");
 
   Scene scene;
   scene.source_path = file;
@@ -301,6 +274,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
   if (top.has("meshes")) {
     const json& arr = top.at("meshes");
     if (!arr.is_array()) top.fail("meshes", "must be an array");
+    LoadedMeshes loaded;
     for (std::size_t i = 0; i < arr.size(); ++i) {
       Fields f(arr[i], "meshes[" + std::to_string(i) + "]", file);
       f.only({"name", "path", "scale", "translate", "vertex_normals", "material"});
@@ -315,9 +289,11 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
         f.fail(f.field("material.type"), "hollow_glass is for spheres only");
       if (!mesh_override.empty()) m.path = fs::absolute(mesh_override).string();
       const fs::path resolved = resolve_mesh(m.path, base_dir, file + ": " + f.field("path"));
+      m.file = resolved.string();
       try {
-        m.mesh = std::make_shared<const TriangleMesh>(
-            load_obj(resolved.string(), m.scale, m.translate));
+        // A file named several times is read once; the same placement of it
+        // is one mesh, shared (memory follows the distinct meshes).
+        m.mesh = loaded.get(resolved, m.scale, m.translate);
       } catch (const MeshError& e) {
         throw SceneError(file + ": " + f.field("path") + ": " + e.what());
       }
@@ -352,6 +328,11 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
   if (!in) throw SceneError(path.string() + ": cannot open scene file: " + std::strerror(errno));
   constexpr std::size_t kMaxSceneBytes = std::size_t(256) << 20;
   std::string text;
+  // Reserved when the size is known, so that growing never holds two copies.
+  if (fs::is_regular_file(st)) {
+    const auto size = fs::file_size(path, ec);
+    if (!ec && size <= kMaxSceneBytes) text.reserve(std::size_t(size));
+  }
   std::vector<char> buf(1 << 16);
   while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
     text.append(buf.data(), std::size_t(in.gcount()));
@@ -375,7 +356,7 @@ json to_json(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 json to_json(const Material& m) {
   json j = {{"type", to_string(m.kind)}};
   if (m.kind == MaterialKind::Diffuse) j["albedo"] = to_json(m.albedo);
-  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass) j["ior"] = num(m.ior);
+  if (is_glass(m.kind)) j["ior"] = num(m.ior);
   return j;
 }
 json to_json(const Camera& c) {
@@ -389,7 +370,22 @@ std::string camera_to_json(const Camera& camera) {
   return json{{"camera", to_json(camera)}}.dump(2);
 }
 
-std::string scene_to_json(const Scene& s) {
+namespace {
+// The path of the OBJ `m` was loaded from, as a file in `dir` should name it.
+std::string mesh_path_from(const MeshObject& m, const fs::path& dir) {
+  if (m.file.empty()) return m.path;
+  std::error_code ec;
+  // Canonical on both sides: ".." from a folder reached by a symbolic link
+  // goes up from where the link points, as the kernel resolves it.
+  const fs::path target = fs::weakly_canonical(fs::absolute(m.file, ec), ec);
+  if (ec) return fs::absolute(m.file).lexically_normal().string();
+  const fs::path from = fs::weakly_canonical(fs::absolute(dir.empty() ? fs::path(".") : dir, ec), ec);
+  const fs::path rel = ec ? fs::path() : target.lexically_relative(from);
+  return rel.empty() ? target.string() : rel.string();
+}
+}  // namespace
+
+std::string scene_to_json(const Scene& s, const fs::path& file) {
   json j;
   j["name"] = s.name;
   j["camera"] = to_json(s.camera);
@@ -405,7 +401,9 @@ std::string scene_to_json(const Scene& s) {
   if (!s.meshes.empty()) {
     j["meshes"] = json::array();
     for (const auto& m : s.meshes)
-      j["meshes"].push_back({{"name", m.name}, {"path", m.path}, {"scale", num(m.scale)},
+      j["meshes"].push_back({{"name", m.name},
+                             {"path", file.empty() ? m.path : mesh_path_from(m, file.parent_path())},
+                             {"scale", num(m.scale)},
                              {"translate", to_json(m.translate)},
                              {"vertex_normals", m.vertex_normals},
                              {"material", to_json(m.material)}});

@@ -39,8 +39,11 @@ Scene parse_scene(const std::string& text, const std::string& source_name,
                   const std::filesystem::path& base_dir = {},
                   const std::string& mesh_override = {});
 
-// Scene to JSON text (the format load_scene reads).
-std::string scene_to_json(const Scene& scene);
+// Scene to JSON text (the format load_scene reads). Given the file it is for,
+// mesh paths are written to find the OBJs each was loaded from: relative to
+// that file's folder, or absolute when no relative path leads there. Without
+// it they stay as the scene file wrote them.
+std::string scene_to_json(const Scene& scene, const std::filesystem::path& file = {});
 // The camera alone as scene-file JSON ("camera": {...}).
 std::string camera_to_json(const Camera& camera);
 

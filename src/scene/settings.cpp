@@ -119,14 +119,25 @@ std::optional<vec3> parse_vec3(std::string_view text) {
   return f;
 }
 
+bool read_number(std::string_view text, double& out) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v))
+    return false;
+  out = v;
+  return true;
+}
+
 std::optional<glm::dvec3> parse_point(std::string_view text) {
-  std::istringstream in{std::string(text)};
+  // Three items between two commas, each read in full by read_number(): the
+  // spaces and signs --intensity refuses are refused here too.
   glm::dvec3 v;
-  char c1 = 0, c2 = 0;
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',') return std::nullopt;
-  in >> std::ws;
-  if (!in.eof() || !std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
-    return std::nullopt;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = k < 2 ? text.find(',') : text.size();
+    if (comma == std::string_view::npos || !read_number(text.substr(0, comma), v[k]))
+      return std::nullopt;
+    text.remove_prefix(k < 2 ? comma + 1 : comma);
+  }
   return v;
 }
 

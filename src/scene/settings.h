@@ -126,6 +126,10 @@ void copy_field(const SettingField& f, const RenderSettings& from, RenderSetting
 std::optional<vec3> parse_vec3(std::string_view text);
 // The same in double (positions).
 std::optional<glm::dvec3> parse_point(std::string_view text);
+// The one reader of a number typed on the command line (each item of a list
+// too): all of `text` a finite decimal as std::from_chars reads it, so no
+// leading space or '+', no hex, no "nan"; out of double's range is refused.
+bool read_number(std::string_view text, double& out);
 
 // Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
 constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;

@@ -117,7 +117,7 @@ void Controller::save_scene() {
     write_file_atomically(path, [&](const std::string& tmp) {
       FILE* f = std::fopen(tmp.c_str(), "w");
       if (!f) return false;
-      const std::string text = scene_to_json(s.applied) + "\n";
+      const std::string text = scene_to_json(s.applied, path) + "\n";
       const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
       return std::fclose(f) == 0 && ok;
     });

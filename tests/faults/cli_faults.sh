@@ -864,6 +864,146 @@ PY
     done
     [ ! -e m.png ] && [ ! -e r.exr ] || fail "a damaged part was merged or resumed"
     ;;
+  scene-parse-linear)
+    # The duplicate-key check rescanned the enclosing array at the end of
+    # each object in it: 400,000 objects took 44 s, a file at the cap weeks.
+    # At the value cap (4 Mi values, here empty objects in one array) the
+    # scene loads within a generous time and memory; one more value is refused.
+    python3 -c "
+n = 4 * 1024 * 1024 - 6
+body = ','.join(['{}'] * n)
+open('big.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ']}')
+open('over.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ',{},{}]}')
+" || skip "python3 missing"
+    under_memory_cap 1000 timeout -s KILL 90 "$bin" --headless --scene big.json --quiet --frames 1 --spp 1 \
+      --stats s.json >out.txt 2>err.txt
+    rc=$?
+    [ "$rc" -ne 137 ] || fail "a scene of 4 Mi values took over 90 s to load"
+    expect_rc 0
+    run --headless --scene over.json --quiet --frames 1 --spp 1 --stats s.json
+    expect_rc 2
+    expect_err "^whisker: over.json: more than 4194304 values; not a scene file$"
+    ;;
+  scene-nesting-capped)
+    # 60 MB of "[[[[..." took 4.6 GB: nesting deeper than 64 levels is
+    # refused naming the line and column, before anything is built.
+    python3 -c "
+open('deep.json', 'w').write('{\"description\":\n' + '[' * 20000000 + ']' * 20000000 + '}')
+d = '{\"description\": ' + '[' * 63 + ']' * 63 + '}'
+open('ok.json', 'w').write(d)
+open('str.json', 'w').write('{\"description\": \"' + '[' * 100 + '\"}')
+" || skip "python3 missing"
+    under_memory_cap 400 timeout -s KILL 30 "$bin" --headless --scene deep.json --quiet --frames 1 \
+      --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: deep.json:2:64: arrays and objects nested deeper than 64 levels$"
+    for ok in ok str; do
+      run --headless --scene $ok.json --quiet --frames 1 --spp 1 --stats s.json
+      expect_rc 0
+    done
+    ;;
+  messages-escaped)
+    # Every echoed user string is escaped where the line is written: a path
+    # with a line break gave 2-3 lines, --out passed a terminal escape
+    # through, a scene name (from the file or from a part) was printed raw,
+    # "mesh not found" took 4 lines and a FIFO mesh was "not found"; range
+    # errors printed the value to 6 digits (1e-320 as 9.99989e-321).
+    scene 16 16
+    one_line_no_esc() {
+      [ "$(wc -l <"${2:-err.txt}")" -le 1 ] || fail "$1: $(wc -l <"${2:-err.txt}") lines: $(head -c 300 "${2:-err.txt}")"
+      ! grep -qP '[\x00-\x08\x0b-\x1f\x7f]' "${2:-err.txt}" || fail "$1: a raw control character: $(head -c 300 "${2:-err.txt}" | od -c | head -5)"
+    }
+    run --headless --scene scene.json --quiet --frames 1 --out $'nodir\x1b]0;pwned\x07/o.png'
+    expect_rc 2
+    one_line_no_esc "--out with an escape"
+    expect_err '^whisker: --out nodir\\x1b\]0;pwned\\x07/o.png: folder'
+    mkdir $'a\nb'
+    run --headless --scene $'a\nb/x.json' --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "--scene with a line break"
+    expect_err '^whisker: .*a\\nb/x.json'
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "gone.obj"}]}' >gone.json
+    run --headless --scene gone.json --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "mesh not found"
+    expect_err '^whisker: gone.json: meshes\[0\].path: mesh "gone.obj" not found \(looked in gone.obj, .*assets/gone.obj\)'
+    mkfifo pipe.obj
+    echo '{"camera": {"width": 16, "height": 16}, "meshes": [{"path": "pipe.obj"}]}' >pipe.json
+    run --headless --scene pipe.json --quiet --frames 1 --stats s.json
+    expect_rc 2
+    one_line_no_esc "FIFO mesh"
+    expect_err '^whisker: pipe.json: meshes\[0\].path: mesh "pipe.obj" is not a regular file \(a FIFO\)$'
+    for pair in 'light|"intensity": 1e308|light.intensity: must be in \[0, 1e\+30\], got 1e\+308$' \
+                'camera|"fov": 1e-320|camera.fov: must be in \[1, 179\], got 1e-320$' \
+                'camera|"fov": 0.1|camera.fov: must be in \[1, 179\], got 0.1$'; do
+      IFS='|' read -r obj field want <<<"$pair"
+      echo "{\"$obj\": {$field}}" >range.json
+      run --headless --scene range.json --quiet --frames 1 --stats s.json
+      expect_rc 2
+      expect_err "^whisker: range.json: $want"
+    done
+    printf '{"name": "n\\u001b]0;pwned\\u0007\\nx\\u009b2J", "camera": {"width": 8, "height": 8}}' >named.json
+    run --headless --scene named.json --frames 1 --spp 1 --out-float $'o\x1bx.pfm'
+    expect_rc 0
+    one_line_no_esc "the summary line" out.txt
+    ! grep -q $'\xc2\x9b' out.txt || fail "the summary line holds a raw C1 control"
+    if have_exr; then
+      run --headless --scene named.json --quiet --spp 1 --samples 0:1 --out-sum p.exr
+      expect_rc 0
+      run merge p.exr --out m.png
+      expect_rc 0
+      one_line_no_esc "merge's summary (a scene name from a part)" out.txt
+      grep -q 'n\\x1b\]0;pwned\\x07\\nx' out.txt || fail "merge's summary: $(cat -v out.txt)"
+    fi
+    ;;
+  list-options-one-reader)
+    # --light " 1,2,3", "+1,2,3" and "1, 2, 3" were taken where --intensity
+    # refuses " 5" and "+5": every number of a list option is read by the same
+    # reader. --edit-light and --edit-after were ignored with --headless.
+    scene 8 8
+    for opt in --light --split-weights; do
+      for bad in ' 1,1,1' '+1,1,1' '1, 1, 1' '1,1,1 ' '1,1' '1,1,1,1' '0x1,1,1' 'nan,1,1' '1,,1' '1e400,1,1'; do
+        run --headless --scene scene.json --quiet --frames 1 --stats s.json "$opt" "$bad"
+        expect_rc 2
+        expect_err "^whisker: $opt "
+        [ "$(wc -l <err.txt)" -eq 1 ] || fail "$opt '$bad': more than one line"
+      done
+      run --headless --scene scene.json --quiet --frames 1 --stats s.json "$opt" '0.5,1e-1,1'
+      expect_rc 0
+    done
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --light=-1.5,2e3,-0
+    expect_rc 0
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --edit-light 1,2,3
+    expect_rc 2
+    expect_err "^whisker: --edit-light needs the viewer; drop --headless$"
+    run --headless --scene scene.json --quiet --frames 1 --stats s.json --edit-after 2
+    expect_rc 2
+    expect_err "^whisker: --edit-after needs the viewer; drop --headless$"
+    run --scene scene.json --frames 1 --edit-after 1 --edit-light ' 1,2,3'
+    expect_rc 2
+    expect_err "^whisker: --edit-light  1,2,3: expected three finite numbers"
+    ;;
+  obj-memory-bounded)
+    # An OBJ was read whole before its first line was checked: a 3 GB sparse
+    # file took 6.3 GB. Its size is checked against the 256 MiB cap before
+    # reading, and the lines are checked as they are read, so a bad line
+    # early in a large file ends the read there.
+    scene 8 8
+    truncate -s 3G sparse.obj
+    { printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'; } >head.obj
+    cp head.obj nul.obj && truncate -s 200M nul.obj
+    under_memory_cap 150 timeout -s KILL 20 "$bin" --headless --scene cat --mesh "$PWD/sparse.obj" --quiet \
+      --frames 1 --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: .*sparse.obj: 3221225472 bytes; an OBJ file may have at most 256 MiB$"
+    under_memory_cap 150 timeout -s KILL 20 "$bin" --headless --scene cat --mesh "$PWD/nul.obj" --quiet \
+      --frames 1 --stats s.json >out.txt 2>err.txt
+    rc=$?
+    expect_rc 2
+    expect_err "^whisker: .*nul.obj:5: binary data, not a text OBJ file$"
+    ;;
   *)
     fail "unknown case (see the case list in $0)"
     ;;
