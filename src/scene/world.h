@@ -112,7 +112,7 @@ class World {
   bool occluded_to_light(const Ray& ray, float dist2) const {
     if (!light_cages_.empty() && outside_a_light_cage(ray)) return true;
     if (dist2 < light_clear2_) return mesh_ && mesh_->bvh.occluded(ray);
-    return occluded(ray);
+    return occluded(ray, light_on_.empty() ? kNoSkip : light_sphere_passed(ray));
   }
 
   // The squared distance from the light within which occluded_to_light()
@@ -138,6 +138,7 @@ class World {
   void set_light_clearance(const Scene& scene);
   void set_light_cages();
   bool outside_a_light_cage(const Ray& ray) const;
+  std::uint32_t light_sphere_passed(const Ray& ray) const;
   void build_mesh(const Scene& scene, BvhMethod method);
   void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   void record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
@@ -158,6 +159,10 @@ class World {
   // from the light: shadow rays there never test the six wall spheres.
   float light_clear2_ = 0.0f;
   std::vector<std::uint32_t> light_cages_;  // spheres holding the light strictly inside
+  // Spheres the light lies on (within the cages' tolerance): a shadow ray
+  // that cannot cross one before the light does not test it
+  // (light_sphere_passed()).
+  std::vector<std::uint32_t> light_on_;
   Light light_;  // the scene light in render space (light_clear2_ is computed for it)
   glm::dvec3 origin_{0.0};
 };

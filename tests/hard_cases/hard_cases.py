@@ -251,6 +251,18 @@ class Reference:
         ambiguous = cos < 1e-6
         blockers = list(self.spheres) + [(c, r, None) for c, r in self.shadow_only]
         for c, r, _ in blockers:  # the segment p -> light against each sphere
+            m = sub(self.light, c)
+            if abs(math.sqrt(dot(m, m)) - r) <= 1e-12 * (r + dist):
+                # The light on this sphere: the line meets it at the light
+                # (t = dist) and at t = dist - 2 m.wl. The segment crosses the
+                # sphere iff that root lies in (0, dist): p outside and below
+                # the tangent plane at the light.
+                other = dist - 2.0 * dot(m, wl)
+                if abs(dot(m, wl)) <= 1e-9 * r or abs(other) <= 1e-9 * (r + dist):
+                    ambiguous = True
+                elif 0.0 < other < dist:
+                    return (0.0, 0.0, 0.0), ambiguous
+                continue
             roots = sphere_roots(p, wl, c, r)
             if roots is None:
                 continue
@@ -500,6 +512,126 @@ def light_on_surface(run, shift):
                          [(mv((0, -5, 0)), (0, 1, 0), (1, 1, 1), 50)], light, 2e10).image(cam)
     n = wrong_against_reference(img, ref, amb)
     yield ("light on a flat mesh" + at, n <= 2, f"{n} pixels off the reference (allowed 2)")
+
+
+def on_sphere(center, radius, direction):
+    """The point of a sphere in a direction from its centre, in double."""
+    u = norm(direction)
+    return add(tuple(center), mul(u, radius))
+
+
+def cat_triangle(scene):
+    """The largest cat triangle facing the camera, its corners in double (the
+    OBJ's scale and translation applied), and its face number in the OBJ."""
+    m = scene["meshes"][0]
+    vs, best, face = [], None, 0
+    cam = tuple(scene["camera"]["position"])
+    for line in CAT_OBJ.read_text().splitlines():
+        f = line.split()
+        if f and f[0] == "v":
+            vs.append(add(mul(tuple(float(x) for x in f[1:4]), m["scale"]), tuple(m["translate"])))
+        elif f and f[0] == "f":
+            face += 1
+            a, b, c = (vs[int(x.split("/")[0]) - 1] for x in f[1:4])
+            n = cross(sub(b, a), sub(c, a))
+            area2 = math.sqrt(dot(n, n))
+            ctr = mul(add(add(a, b), c), 1.0 / 3.0)
+            if area2 > 0 and dot(n, sub(cam, ctr)) > 0 and (best is None or area2 > best[0]):
+                best = (area2, (a, b, c), face)
+    return best[1], best[2]
+
+
+def case_light_exactly_on_surface(run):
+    """A light exactly on a wall of the report's room (the ceiling, the wall
+    behind the camera, the front wall, off their axes too), on a small
+    diffuse ball and on glass, each scaled by 1e-3, 1 and 1e4, against the
+    double reference: what lies in front of the surface is lit, also at
+    grazing angles just past the wall's edge, where the float root of the
+    wall at the light itself fell before the shadow ray's end. Then a light
+    on a cat triangle: the same image at every scale."""
+    base = load_scene("indirect")
+    walls = [w for w in base["spheres"] if w["material"]["type"] == "diffuse"]
+    ceiling, front, behind = ((0, 1000, 0), 940), ((0, 0, -1000), 940), ((0, 0, 1000), 940)
+    ball_c, ball_r = (7.0, -13.0, 4.0), 1.5
+    glass = {"name": "glass", "center": [0, 0, 0], "radius": 10,
+             "material": {"type": "glass", "ior": 1.0}}
+    lights = [("on the ceiling", on_sphere(*ceiling, (0, -1, 0)), False),
+              ("on the ceiling off its axis", on_sphere(*ceiling, (0.021, -1, -0.013)), False),
+              ("on the wall behind", on_sphere(*behind, (0, 0, -1)), False),
+              ("on the wall behind off its axis", on_sphere(*behind, (-0.03, 0.017, -1)), False),
+              ("on the front wall off its axis", on_sphere(*front, (0.025, 0.04, 1)), False),
+              ("on a small ball", on_sphere(ball_c, ball_r, (-0.3, 0.8, 0.5)), False),
+              ("on a glass ball", on_sphere((0, 0, 0), 10, (0.2, 1, 0.4)), True)]
+    for what, light, with_glass in lights:
+        for k in (1e-3, 1.0, 1e4):
+            spheres = walls + [diffuse("ball", list(ball_c), ball_r, [1, 1, 1])]
+            if with_glass:
+                spheres = spheres + [glass]
+            s = scaled(scene_of("light-exactly-on-surface", spheres, camera((0, 0, 55), (0, 0, 0), 60),
+                                {"position": list(light), "intensity": 2e10}), k)
+            img, _ = run.render(s)
+            ref, amb = Reference([(tuple(w["center"]), w["radius"], tuple(w["material"]["albedo"]))
+                                  for w in s["spheres"] if w["material"]["type"] == "diffuse"],
+                                 [], tuple(s["light"]["position"]), s["light"]["intensity"],
+                                 shadow_only=[(tuple(g["center"]), g["radius"]) for g in s["spheres"]
+                                              if g["material"]["type"] == "glass"]).image(s["camera"])
+            n = wrong_against_reference(img, ref, amb)
+            yield (f"light {what}, scaled by {k:g}", n <= 2, f"{n} pixels off the reference (allowed 2)")
+    # On a cat triangle: against the same cat without that triangle (a
+    # segment meets the triangle's plane only at the light, so the triangle
+    # shadows nothing; points behind it are shadowed by the rest of the
+    # closed cat), leaving out the pixels that see the triangle or the hole.
+    for k in (1e-3, 1.0, 1e4):
+        cat = scaled(load_scene("cat"), k)
+        cat["settings"].update({"indirect": False, "aa": False})
+        tri, index = cat_triangle(cat)
+        cat["light"]["position"] = list(mul(add(add(tri[0], tri[1]), tri[2]), 1.0 / 3.0))
+        img, _ = run.render(cat)
+        holed = run.dir / "cat-holed.obj"
+        lines, face = [], 0
+        for line in CAT_OBJ.read_text().splitlines():
+            if line.split()[:1] == ["f"]:
+                face += 1
+                if face == index:
+                    continue
+            lines.append(line)
+        holed.write_text("\n".join(lines) + "\n")
+        cat["meshes"][0]["path"] = str(holed)
+        ref, _ = run.render(cat)
+        seen = pixels_seeing(cat["camera"], tri)
+        n = 0
+        for i in range(img["h"]):
+            for j in range(img["w"]):
+                near = any((y, x) in seen for y in (i - 1, i, i + 1) for x in (j - 1, j, j + 1))
+                if not near and any(abs(display(a) - display(b)) > 2.0
+                                    for a, b in zip(img["px"][i][j], ref["px"][i][j])):
+                    n += 1
+        yield (f"light on a cat triangle, scaled by {k:g}", n <= 2,
+               f"{n} pixels differ from the cat without the triangle (allowed 2)")
+
+
+def pixels_seeing(cam, tri):
+    """The pixels (row, column) whose centre ray meets the triangle (in double)."""
+    pos = tuple(cam["position"])
+    w, h = cam["width"], cam["height"]
+    fwd = norm(sub(tuple(cam["look_at"]), pos))
+    right = norm(cross(fwd, tuple(cam["up"])))
+    up = cross(right, fwd)
+    focal = w / (2 * math.tan(math.radians(cam["fov"]) / 2))
+    a, b, c = (sub(v, pos) for v in tri)
+    n = cross(sub(b, a), sub(c, a))
+    seen = set()
+    for i in range(h):
+        for j in range(w):
+            x, y = j - w / 2 + 0.5, h / 2 - i - 0.5
+            d = add(add(mul(right, x), mul(up, y)), mul(fwd, focal))
+            den = dot(d, n)
+            if den == 0:
+                continue
+            p = mul(d, dot(a, n) / den)
+            if all(dot(cross(sub(q1, q0), sub(p, q0)), n) >= 0 for q0, q1 in ((a, b), (b, c), (c, a))):
+                seen.add((i, j))
+    return seen
 
 
 def case_far_obj(run):
@@ -922,6 +1054,7 @@ CASES = {
     "thin-shell": case_thin_shell,
     "tiny-ball": case_tiny_ball,
     "light-on-surface": case_light_on_surface,
+    "light-exactly-on-surface": case_light_exactly_on_surface,
     "far-obj": case_far_obj,
     "intensity": case_intensity,
     "denormals": case_denormals,
