@@ -449,20 +449,6 @@ TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
   EXPECT_TRUE(seen_midway);
 }
 
-TEST(SceneChange, FresnelWithoutGlassRestartsNothing) {
-  Scene diffuse = three_balls();
-  for (SphereObject& sp : diffuse.spheres) sp.material.kind = MaterialKind::Diffuse;
-  Scene b = diffuse;
-  b.settings.fresnel = !diffuse.settings.fresnel;
-  EXPECT_TRUE(only_idle_fresnel(diffuse, b));
-  b.settings.spp = 7;  // with another setting: a real change
-  EXPECT_FALSE(only_idle_fresnel(diffuse, b));
-  Scene glass = three_balls();  // has a hollow glass ball
-  Scene g = glass;
-  g.settings.fresnel = !glass.settings.fresnel;
-  EXPECT_FALSE(only_idle_fresnel(glass, g));
-}
-
 // A dropped scene file loads; a dropped OBJ goes into the current scene in
 // place of its meshes; anything else is refused with a message naming it.
 TEST(DropFile, SceneFilesLoadObjsReplaceMeshesOthersAreRefused) {

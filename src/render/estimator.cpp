@@ -40,11 +40,11 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
   const RenderSettings& s = ctx.settings;
   const PixelBlock& t = tile.pixels;
   const bool reuse = reuses_paths(s);
-  const int side = reuse ? std::min(s.reuse, kMaxReuseBlock) : 1;
+  const int side = reuse ? std::min(s.reuse, kMaxReuse) : 1;
   TileResult result;
   // Once per tile, not per block: a pixel by itself clears one sum, not 64.
-  PixelSum sums[kMaxReuseBlock * kMaxReuseBlock];
-  vec3 out[kMaxReuseBlock * kMaxReuseBlock];
+  PixelSum sums[kMaxReuse * kMaxReuse];
+  vec3 out[kMaxReuse * kMaxReuse];
   for (int bi = t.i0; bi < t.i1; bi += side) {
     for (int bj = t.j0; bj < t.j1; bj += side) {
       const PixelBlock block{bi, std::min(t.i1, bi + side), bj, std::min(t.j1, bj + side)};

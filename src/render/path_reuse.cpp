@@ -14,7 +14,7 @@ namespace whisker {
 
 namespace {
 
-constexpr int kMaxPixels = kMaxReuseBlock * kMaxReuseBlock;
+constexpr int kMaxPixels = kMaxReuse * kMaxReuse;
 
 // A pixel's first hit: a sampling technique of the block when diffuse.
 struct FirstHit {

@@ -15,9 +15,6 @@
 
 namespace whisker {
 
-// The largest block side RenderSettings::reuse takes.
-inline constexpr int kMaxReuseBlock = 8;
-
 // Whether a render with these settings shares paths between pixels (a block
 // of more than one pixel and indirect light that leaves the first hit).
 inline bool reuses_paths(const RenderSettings& s) {
@@ -30,7 +27,7 @@ struct PixelBlock {
 };
 
 // One sample, number `sample`, of each pixel of the block (at most
-// kMaxReuseBlock on a side), written to out[(i - i0) * (j1 - j0) + (j - j0)].
+// kMaxReuse on a side), written to out[(i - i0) * (j1 - j0) + (j - j0)].
 // Each pixel draws its numbers from its own Sampler (pixel_sampler), as
 // sample_pixel does.
 //

@@ -38,7 +38,7 @@ Material read_material(const Fields& f) {
     f.fail(f.field("type"), "unknown material \"" + cut_for_message(type) + "\" (expected " +
                                 name_list(m.kind) + ")");
   if (m.kind == MaterialKind::Diffuse) m.albedo = f.vector("albedo", 0.0, 1.0, vec3(1.0f));
-  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+  if (is_glass(m.kind))
     m.ior = float(f.number("ior", 1.0, 4.0, 1.5));
   if (m.kind != MaterialKind::Diffuse && f.has("albedo"))
     f.fail(f.field("albedo"), "only diffuse materials have an albedo");

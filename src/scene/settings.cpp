@@ -42,7 +42,7 @@ const SettingField kFields[] = {
      "0.5,0.25,1"},
     {"reuse", "--reuse", &R::reuse,
      "Path reuse: the pixels of each NxN block share their indirect paths (1 = off, the report's)",
-     1, 8},
+     1, kMaxReuse},
 };
 
 std::string bounds(double lo, double hi) {

@@ -25,6 +25,10 @@ using glm::vec3;
 enum class SamplerKind : std::uint8_t { Independent, Sobol };
 
 
+// The largest path-reuse block side (RenderSettings::reuse): the estimator's
+// per-block arrays are sized by it.
+inline constexpr int kMaxReuse = 8;
+
 struct RenderSettings {
   int spp = 1;            // samples per pixel per pass
   int max_depth = 5;      // bounces after the camera hit (report: getColor(ray, 5))
@@ -50,7 +54,7 @@ struct RenderSettings {
   // Path reuse (render/path_reuse.h): the pixels of each reuse x reuse block
   // share their indirect paths, each weighted for every pixel so that its
   // estimate stays unbiased; 1 = each pixel its own paths (the report's).
-  int reuse = 1;
+  int reuse = 1;  // 1 to kMaxReuse
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -108,9 +108,7 @@ void World::set_light_clearance(const Scene& scene) {
     // send every ray back to the side it came from) or if the camera is
     // inside. Then only the near root t1 >= |L - c| - r bounds the segment.
     // (A hollow sphere's inner shell lies inside its outer one, which bounds both.)
-    const bool outside = s.material.kind != MaterialKind::Glass &&
-                         s.material.kind != MaterialKind::HollowGlass &&
-                         glm::dot(fc, fc) > r * r;
+    const bool outside = !is_glass(s.material.kind) && glm::dot(fc, fc) > r * r;
     const double near = std::max(0.0, std::sqrt(d2) - r);
     clear = std::min(clear, outside ? std::max(0.0, d2 - r * r) : near * near);
   }

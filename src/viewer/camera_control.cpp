@@ -102,7 +102,7 @@ bool eye_inside_room(const Camera& cam, const World& world, std::string* why) {
         return false;
       }
       const MaterialKind kind = hit.material ? hit.material->kind : MaterialKind::Diffuse;
-      if (kind == MaterialKind::Glass || kind == MaterialKind::HollowGlass) {
+      if (is_glass(kind)) {
         ray.tmin = hit.t * 1.0001f + 1e-4f;
         continue;
       }

@@ -44,29 +44,9 @@ bool only_target_raised(const Scene& applied, const Scene& edited) {
   return classify_change(same, edited) == SceneChange::None;
 }
 
-bool only_idle_fresnel(const Scene& applied, const Scene& edited) {
-  if (applied.settings.fresnel == edited.settings.fresnel) return false;
-  for (const SphereObject& sp : edited.spheres)
-    if (sp.material.kind == MaterialKind::Glass || sp.material.kind == MaterialKind::HollowGlass)
-      return false;
-  for (const MeshObject& m : edited.meshes)
-    if (m.material.kind == MaterialKind::Glass || m.material.kind == MaterialKind::HollowGlass)
-      return false;
-  Scene same = applied;
-  same.settings.fresnel = edited.settings.fresnel;
-  return classify_change(same, edited) == SceneChange::None;
-}
-
 void Controller::apply_edits(double now, bool record) {
   if (record && classify_change(s.applied, s.edited) != SceneChange::None)
     s.history.changed(s.applied);
-  if (only_idle_fresnel(s.applied, s.edited)) {
-    // Fresnel acts on glass only (it draws no random number elsewhere): the
-    // image would be the same, so the render goes on. The next real edit
-    // hands the renderer all settings.
-    s.applied = s.edited;
-    return;
-  }
   if (only_target_raised(s.applied, s.edited)) {
     // More samples of the same image: the accumulation carries on.
     renderer.set_target_spp(s.edited.settings.target_spp);

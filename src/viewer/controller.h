@@ -21,10 +21,6 @@ void request_for_drop(const std::string& path, PanelRequests& req, std::string& 
 // 0 = never stop): the render goes on instead of restarting.
 bool only_target_raised(const Scene& applied, const Scene& edited);
 
-// True if the edit only switches Fresnel in a scene without glass: the image
-// cannot change, so nothing restarts.
-bool only_idle_fresnel(const Scene& applied, const Scene& edited);
-
 // What a saved float image records in its EXR header (as the headless
 // --out-float): scene, units, spp, passes, seed, render time, camera, light
 // and settings, as whisker.* string attributes.

@@ -39,9 +39,9 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
   if (m.kind == MaterialKind::Diffuse)
     changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
   if (m.kind == MaterialKind::Diffuse) tip("Fraction of light reflected, per colour channel.");
-  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+  if (is_glass(m.kind))
     changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f");
-  if (m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass)
+  if (is_glass(m.kind))
     tip("How strongly the glass bends light: 1.0 air, 1.33 water, 1.5 window glass. "
         "Drag, or double-click to type.");
   if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
@@ -184,7 +184,7 @@ static void threads_slider(ViewerState& s, PanelRequests& req) {
 
 static bool scene_has_glass(const Scene& e) {
   const auto glass = [](const Material& m) {
-    return m.kind == MaterialKind::Glass || m.kind == MaterialKind::HollowGlass;
+    return is_glass(m.kind);
   };
   for (const SphereObject& sp : e.spheres)
     if (glass(sp.material)) return true;
@@ -222,7 +222,8 @@ static void glass_toggle(ViewerState& s) {
 static void reuse_slider(RenderSettings& r) {
   // Path reuse shares the bounces leaving the first hit, which only indirect light sends.
   ImGui::BeginDisabled(!r.indirect);
-  ImGui::SliderInt("path reuse", &r.reuse, 1, 8, r.reuse == 1 ? "1 (off)" : "%d");
+  const SettingField& f = setting_field("reuse");
+  ImGui::SliderInt("path reuse", &r.reuse, int(f.lo), int(f.hi), r.reuse == 1 ? "1 (off)" : "%d");
   tip(r.indirect ? "Path reuse: the pixels of each N x N block share their indirect "
                    "paths, each weighted so that every pixel stays unbiased. Less noise "
                    "per second (the cat: 4 x 4); 1: each pixel its own paths (the report's)."
