@@ -26,6 +26,10 @@ int main(int argc, char** argv) {
   int n = 0;
   for (int i = 1; i < argc; ++i) {
     std::vector<fs::path> files;
+    if (!fs::exists(argv[i])) {  // a corpus that is not there is no replay
+      std::printf("%s: no such file or folder\n", argv[i]);
+      return 1;
+    }
     if (fs::is_directory(argv[i])) {
       for (const auto& e : fs::directory_iterator(argv[i]))
         if (e.is_regular_file()) files.push_back(e.path());
