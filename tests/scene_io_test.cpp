@@ -298,7 +298,7 @@ TEST(SceneFiles, SavedSceneFindsItsMeshesFromAnotherFolder) {
   const Scene cat = load_scene(root / "orig" / "cat.json");
   ASSERT_EQ(cat.meshes.size(), 1u);
 
-  for (const fs::path out : {root / "saved" / "deeper" / "cat.json", root / "cat.json"}) {
+  for (const fs::path& out : {root / "saved" / "deeper" / "cat.json", root / "cat.json"}) {
     std::ofstream(out) << scene_to_json(cat, out);
     Scene back;
     ASSERT_NO_THROW(back = load_scene(out)) << out;

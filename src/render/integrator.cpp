@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "render/direct_light.h"
+#include "render/light_connect.h"
 #include "render/sampling.h"
 #include "render/scattering.h"
 #include "render/splitting.h"
@@ -35,6 +36,7 @@ vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler) {
     }
     SurfaceHit h;
     ctx.world.record(ray, hit, h);
+    if (m.kind != MaterialKind::Diffuse) state.from = {};  // no light path passes a mirror
     if (m.kind == MaterialKind::Mirror) {
       ray = sample_mirror(ray, h);
       continue;
@@ -51,33 +53,46 @@ vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler) {
 }
 
 DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                             const vec3& beta) {
+                             const vec3& beta, const Departure& from) {
   DirectLight out{vec3(0.0f), FacingNormals(h, in.d)};
   const LightArrival a = direct_light(ctx.world, h, out.n, ctx.stats.rays);
-  if (a.lit) out.L = beta * a.weight;
+  if (!a.lit) return out;
+  if (from.cos > 0.0f)
+    out.L = beta * (a.weight * bounce_weight(from, in, h, a, light_path_start(ctx.world.light())));
+  else
+    out.L = beta * a.weight;
   return out;
 }
 
 std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
                                   PathState& state, Sampler& sampler) {
   const RenderSettings& settings = ctx.settings;
-  const DirectLight direct = add_direct_light(ctx, in, h, state.beta);
+  const DirectLight direct = add_direct_light(ctx, in, h, state.beta, state.from);
   state.L += direct.L;
   if (!settings.indirect || state.depth == settings.max_depth) return std::nullopt;
   const int split = split_factor(settings, state.diffuse_hits++, state.beta);
   const Frame frame(direct.n.ns);
+  const bool connect = settings.connect;
   if (split > 1) {
     vec3 sum(0.0f);
     for (int k = 0; k < split; ++k) {
       Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
-      const PathState b{sample_diffuse(h, frame, branch), state.beta, state.depth + 1,
-                        state.diffuse_hits};
+      PathState b{sample_diffuse(h, frame, branch), state.beta, state.depth + 1,
+                  state.diffuse_hits};
+      if (connect) b.from = departure(direct.n, b.ray.d, split);
       sum += trace_path(ctx, b, branch);
     }
     state.L = state.L + sum / float(split);
+    // After the branches, so that they keep the numbers they draw without it.
+    if (connect) state.L += light_connection(ctx, {h, direct.n, state.beta, split}, sampler);
     return std::nullopt;
   }
-  return sample_diffuse(h, frame, sampler);
+  const Ray next = sample_diffuse(h, frame, sampler);
+  if (connect) {
+    state.from = departure(direct.n, next.d, 1);
+    state.L += light_connection(ctx, {h, direct.n, state.beta, 1}, sampler);
+  }
+  return next;
 }
 
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {

@@ -36,10 +36,19 @@ struct Pixel {
   int i = 0, j = 0;
 };
 
+// The diffuse vertex a path's ray departed from, where a light path was
+// sent too (render/light_connect.h): the cosine of the ray with the facing
+// shading normal there (0: no light path can make this bounce) and how many
+// cosine bounces left it.
+struct Departure {
+  float cos = 0.0f;
+  float count = 0.0f;
+};
+
 // A path's state where it continues: the ray it follows (render space), its
 // throughput so far, the hits before it (`depth`), how many were diffuse,
 // and the light it has gathered. With `first_hit`, the ray's closest hit,
-// already found by the caller.
+// already found by the caller; `from`, the diffuse vertex the ray left.
 struct PathState {
   Ray ray;
   vec3 beta{1.0f};
@@ -47,6 +56,7 @@ struct PathState {
   int diffuse_hits = 0;
   vec3 L{0.0f};
   const Hit* first_hit = nullptr;
+  Departure from{};
 };
 
 // The numbers of pixel px's sample number `sample`: the one place a pixel's
@@ -77,20 +87,23 @@ inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
 }
 
 // The point light's direct light at a recorded diffuse hit, given the
-// throughput there (the albedo in it), and the hit's normals turned to the
+// throughput there (the albedo in it) and the vertex the ray `in` left (for
+// the weight of light connections), and the hit's normals turned to the
 // side the ray came from: the frame of its bounces.
 struct DirectLight {
   vec3 L{0.0f};
   FacingNormals n;
 };
 DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                             const vec3& beta);
+                             const vec3& beta, const Departure& from = {});
 
 // At the recorded diffuse hit h of ray `in`, for the path in `state` (the
 // albedo already in its beta): adds its direct light to state.L and, when
-// the path goes on, either splits (the branches' mean added to state.L; the
-// path ends: returns nothing) or returns the one bounce the caller follows.
-// Nothing also where the path ends. Counts the hit in state.diffuse_hits.
+// the path goes on, its light connection (RenderSettings::connect), and
+// either splits (the branches' mean added to state.L; the path ends:
+// returns nothing) or returns the one bounce the caller follows, state.from
+// set for it. Nothing also where the path ends. Counts the hit in
+// state.diffuse_hits.
 std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
                                   PathState& state, Sampler& sampler);
 

@@ -106,7 +106,9 @@ vec3 send_bounces(const PathContext& ctx, const Technique& t, Sampler& sampler,
     PathState state{ray, beta, 1, 1};
     if (const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, branch)) {
       y.Lo = state.L;
-      y.Lo += trace_path(ctx, PathState{*next, beta, 2, state.diffuse_hits}, branch);
+      PathState rest{*next, beta, 2, state.diffuse_hits};
+      rest.from = state.from;  // the light connection's weight at the next vertex
+      y.Lo += trace_path(ctx, rest, branch);
     } else {
       y.Lo = state.L;
     }

@@ -43,6 +43,9 @@ const SettingField kFields[] = {
     {"reuse", "--reuse", &R::reuse,
      "Path reuse: the pixels of each NxN block share their indirect paths (1 = off, the report's)",
      1, kMaxReuse},
+    {"connect", "--connect", &R::connect,
+     "Light connections: each diffuse bounce also reaches a point the light shines on (MIS)", 0, 0,
+     0, "", "light connections"},
 };
 
 std::string bounds(double lo, double hi) {

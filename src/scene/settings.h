@@ -55,6 +55,11 @@ struct RenderSettings {
   // share their indirect paths, each weighted for every pixel so that its
   // estimate stays unbiased; 1 = each pixel its own paths (the report's).
   int reuse = 1;  // 1 to kMaxReuse
+  // Light connections (render/light_connect.h): at each diffuse vertex that
+  // bounces, one more path, from the light to a surface point it shines on
+  // and from there to the vertex, combined with the cosine bounces by
+  // multiple importance sampling.
+  bool connect = false;
 
   bool operator==(const RenderSettings&) const = default;
 };
