@@ -1,16 +1,21 @@
-// The film's noise figures (render/film.h): the pixel figure from the sums of
-// squares, the scale figures from the two half images, and the figure the
-// stats and the viewer show, which must not read low when pixels share
-// their errors.
+// The film (render/film.h): its noise figures (the pixel figure from the
+// sums of squares, the scale figures from the two half images, and the
+// figure the stats and the viewer show, which must not read low when pixels
+// share their errors), and pixel sums that drop non-finite samples.
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include <glm/vec3.hpp>
 
 #include "render/film.h"
 
 namespace whisker {
 namespace {
+
+using glm::vec3;
 
 constexpr int kSide = 128;
 
@@ -101,6 +106,28 @@ TEST(FilmNoise, PixelSumsTakeOddIndicesIntoTheOddHalf) {
   EXPECT_NEAR(p.odd_sum, 2.0, 1e-6);  // its luminance (weights summing to 1 in float)
   EXPECT_DOUBLE_EQ(p.sum.x, 3.0);
   EXPECT_EQ(p.dropped, 1u);
+}
+
+TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
+  PixelSum p;
+  p.add(vec3(1.0f, 2.0f, 4.0f), 0);
+  p.add(vec3(NAN, 0.0f, 0.0f), 1);
+  p.add(vec3(0.0f, INFINITY, 0.0f), 2);
+  p.add(vec3(1.0f, 0.0f, 0.0f), 3);
+  EXPECT_EQ(p.dropped, 2u);
+  EXPECT_EQ(p.sum, glm::dvec3(2.0, 2.0, 4.0));
+  const double y1 = 0.2126f * 1.0f + 0.7152f * 2.0f + 0.0722f * 4.0f, y2 = 0.2126f;
+  EXPECT_EQ(p.sum_sq, y1 * y1 + y2 * y2);
+
+  Film film;
+  film.reset(2, 1);
+  film.add(1, p);
+  Snapshot s;
+  film.publish(s);
+  s.spp = 2;
+  const Image img = mean_image(s);
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.rgb, std::vector<float>({0, 0, 0, 1, 1, 2}));
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The estimator against closed forms: reflection and refraction laws,
-// Schlick, the diffuse ball's direct light, and interreflection inside a
-// closed diffuse sphere.
+// The estimator (render/integrator.h) against closed forms: the diffuse
+// ball's direct light, vertex normals, and interreflection inside a closed
+// diffuse sphere.
 #include <algorithm>
 
 #include <gtest/gtest.h>
@@ -11,148 +11,14 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/mesh.h"
-#include "render/direct_light.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
-#include "render/sampling.h"
-#include "render/scattering.h"
 #include "render/splitting.h"
 #include "scene/scene_io.h"
+#include "closed_sphere.h"
 #include "render_util.h"
 
 using namespace whisker;
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// A closed diffuse sphere of radius R and grey albedo rho, the camera inside
-// looking at the far wall.
-Scene closed_sphere(vec3 rho, vec3 light, int depth, int spp, int size) {
-  Scene s;
-  s.name = "closed-sphere";
-  s.spheres.push_back({"shell", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, rho}});
-  s.light = {light, 1000.0f};
-  s.camera.position = vec3(0.0f, 0.0f, 5.0f);
-  s.camera.look_at = vec3(0.0f, 0.0f, -10.0f);
-  s.camera.width = s.camera.height = size;
-  s.camera.fov_deg = 90.0f;
-  s.settings.indirect = true;
-  s.settings.max_depth = depth;
-  s.settings.spp = spp;
-  s.settings.target_spp = spp;
-  return s;
-}
-Scene closed_sphere(float rho, vec3 light, int depth, int spp, int size) {
-  return closed_sphere(vec3(rho), light, depth, spp, size);
-}
-
-}  // namespace
-
-TEST(Optics, ReflectionMirrorsTheNormalComponent) {
-  const vec3 d = glm::normalize(vec3(1, -2, 0.5f));
-  const vec3 n(0, 1, 0);
-  const vec3 r = reflect(d, n);
-  EXPECT_FLOAT_EQ(r.x, d.x);
-  EXPECT_FLOAT_EQ(r.y, -d.y);
-  EXPECT_FLOAT_EQ(r.z, d.z);
-}
-
-TEST(Optics, SnellAtManyAngles) {
-  // n1 sin(i) = n2 sin(t), with the refracted ray in the plane of d and n.
-  const vec3 n(0, 0, 1);
-  for (const auto& [n1, n2] : {std::pair{1.0f, 1.5f}, {1.5f, 1.0f}, {1.0f, 2.4f}}) {
-    for (int k = 0; k < 90; ++k) {
-      const double i = k * kPi / 180.0;
-      const vec3 d(float(std::sin(i)), 0.0f, float(-std::cos(i)));
-      vec3 t;
-      const double sin_t = n1 / n2 * std::sin(i);
-      if (sin_t >= 1.0) {
-        EXPECT_FALSE(refract(d, n, n1 / n2, t)) << "TIR expected at " << k << " deg";
-        continue;
-      }
-      if (sin_t > 0.9999) continue;  // grazing: the boundary itself
-      ASSERT_TRUE(refract(d, n, n1 / n2, t)) << k;
-      EXPECT_NEAR(glm::length(t), 1.0f, 1e-6f);
-      EXPECT_NEAR(t.x, sin_t, 2e-6) << k;
-      EXPECT_NEAR(t.y, 0.0f, 1e-7f);
-      EXPECT_LT(t.z, 0.0f);
-    }
-  }
-}
-
-TEST(Optics, TotalInternalReflectionPastTheCriticalAngle) {
-  // From glass (1.5) to air the critical angle is asin(1/1.5) = 41.81 deg.
-  const double crit = std::asin(1.0 / 1.5);
-  const vec3 n(0, 0, 1);
-  vec3 t;
-  for (const double i : {crit + 1e-3, crit + 0.1, 1.2, 1.5}) {
-    const vec3 d(float(std::sin(i)), 0.0f, float(-std::cos(i)));
-    EXPECT_FALSE(refract(d, n, 1.5f, t)) << i;
-  }
-  const vec3 d(float(std::sin(crit - 1e-3)), 0.0f, float(-std::cos(crit - 1e-3)));
-  EXPECT_TRUE(refract(d, n, 1.5f, t));
-}
-
-TEST(Optics, SchlickMatchesItsEndpoints) {
-  EXPECT_NEAR(schlick(1.0f, 1.0f, 1.5f), 0.04f, 1e-7f);  // ((1.5-1)/(1.5+1))^2
-  EXPECT_NEAR(schlick(-1.0f, 1.5f, 1.0f), 0.04f, 1e-7f);
-  EXPECT_NEAR(schlick(0.0f, 1.0f, 1.5f), 1.0f, 1e-7f);   // grazing
-  // Halfway: R0 + (1 - R0) 0.5^5.
-  EXPECT_NEAR(schlick(0.5f, 1.0f, 1.5f), 0.04f + 0.96f / 32.0f, 1e-6f);
-}
-
-TEST(Optics, SinCosOfATurnMatchesDoublePrecision) {
-  double worst = 0.0;
-  for (int k = 0; k <= 1 << 20; ++k) {
-    const float u = float(k) / float(1 << 20);
-    float s, c;
-    sincos_turn(u, s, c);
-    const double a = 2.0 * kPi * double(u);
-    worst = std::max({worst, std::fabs(s - std::sin(a)), std::fabs(c - std::cos(a))});
-  }
-  EXPECT_LT(worst, 1e-7);
-}
-
-TEST(Optics, CosineSamplingHasTheRightMoments) {
-  // For p(w) = cos/pi: E[cos] = 2/3, E[cos^2] = 1/2, and the tangential
-  // components average to zero.
-  std::mt19937 g(5);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  const vec3 n = glm::normalize(vec3(0.3f, -0.5f, 0.8f));
-  double c1 = 0, c2 = 0;
-  vec3 mean(0.0f);
-  const int N = 400000;
-  for (int k = 0; k < N; ++k) {
-    const vec3 w = cosine_direction(n, u(g), u(g));
-    const double c = glm::dot(w, n);
-    ASSERT_GE(c, 0.0);
-    c1 += c;
-    c2 += c * c;
-    mean += w - float(c) * n;
-  }
-  EXPECT_NEAR(c1 / N, 2.0 / 3.0, 5 * std::sqrt(1.0 / 18.0 / N));  // var(cos) = 1/2 - 4/9
-  EXPECT_NEAR(c2 / N, 0.5, 5 * std::sqrt(1.0 / 12.0 / N));
-  EXPECT_LT(glm::length(mean) / N, 3e-3);
-}
-
-// The direction is built from an orthonormal basis without a final
-// normalisation: it must be unit to a few ULP for every normal, including
-// the basis' special case n.z = -1 and its neighbourhood.
-TEST(Optics, CosineDirectionsAreUnitWithoutNormalising) {
-  std::mt19937 g(6);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  double worst = 0.0;
-  for (const vec3 n : {glm::normalize(vec3(0.3f, -0.5f, 0.8f)), vec3(0.0f, 0.0f, -1.0f),
-                       glm::normalize(vec3(1e-4f, -2e-4f, -1.0f)), vec3(1.0f, 0.0f, 0.0f),
-                       glm::normalize(vec3(-0.6f, 0.7f, -0.2f))}) {
-    for (int k = 0; k < 100000; ++k) {
-      const glm::dvec3 w(cosine_direction(n, u(g), u(g)));
-      worst = std::max(worst, std::fabs(glm::length(w) - 1.0));
-    }
-  }
-  EXPECT_LT(worst, 1e-6) << worst;
-}
 
 // Fig 1: the white ball lit directly. Every pixel whose camera and shadow
 // rays are not on a silhouette equals I/(4 pi d^2) rho/pi cos, computed here
@@ -342,34 +208,6 @@ TEST_P(OffCentre, LightInClosedSphere) {
   }
 }
 
-// Sums over millions of samples keep their digits: 2^21 samples of one pixel
-// whose every path has the same value still give that value to 1e-6.
-TEST(Accumulation, MillionsOfSamplesKeepPrecision) {
-  Scene scene = closed_sphere(0.6f, vec3(0.0f), 2, 1 << 17, 1);
-  scene.settings.target_spp = 1 << 21;
-  const Snapshot s = render(scene);
-  ASSERT_EQ(s.spp, std::uint64_t(1) << 21);
-  const double rho = 0.6, expect = rho * 1000.0 / (kPi * 100.0) * (1 - rho * rho * rho) / (1 - rho) / (4 * kPi);
-  // A float running sum would be off by ~1e-3 here; the buffer is double.
-  EXPECT_NEAR(double(s.sum[0]) / double(s.spp), expect, 1e-6 * expect);
-}
-
-TEST(Accumulation, InfiniteSamplesAreDroppedAndCounted) {
-  // A light a hundred-thousandth above the ball's surface (a few float ULPs
-  // at the 45 units from the camera that render space measures), at huge
-  // intensity: the direct term overflows float to +inf on the pixel that
-  // looks straight at it.
-  Scene scene;
-  scene.spheres.push_back({"ball", vec3(0.0f), 10.0f, 0.0f, {MaterialKind::Diffuse, vec3(1.0f)}});
-  scene.light = {vec3(0.0f, 0.0f, 10.00001f), 1e36f};
-  scene.camera.width = scene.camera.height = 1;
-  scene.settings.spp = scene.settings.target_spp = 4;
-  const Snapshot s = render(scene);
-  EXPECT_EQ(s.nan_count, 4u);
-  EXPECT_EQ(s.sum[0], 0.0f);
-  EXPECT_TRUE(std::isfinite(s.sum[0]));
-}
-
 namespace {
 
 // One triangle in the plane z = 0 facing +z, seen straight down from
@@ -410,83 +248,4 @@ TEST(DirectLight, VertexNormalsShadeButNeverLeakThroughTheTerminator) {
   // faces it (cos 0.94), the geometry does not: no light at all.
   const Snapshot leak = render(tilted_normal_triangle(vec3(1, 0, 0.1f), vec3(4, 0, -1), true));
   EXPECT_EQ(leak.mean(0, 0, 0), 0.0f);
-}
-
-// The hit record of the point p (world space) of the unit ball, sphere 0 of
-// the World (render space, relative to the scene's camera).
-SurfaceHit on_ball(const World& world, const vec3& p) {
-  SurfaceHit h;
-  h.p = world.to_render(p);
-  h.err = vec3(glm::dvec3(p) - world.origin() - glm::dvec3(h.p));
-  h.ng = h.ns = h.outward = p;
-  h.sphere = 0;
-  return h;
-}
-
-// The direct-light module on its own: the point light the World owns, the
-// formula at a lit point, nothing (and no shadow ray) for a point facing
-// away, and nothing behind an occluder (whose shadow ray is counted).
-TEST(DirectLight, ThePointLightOfTheWorldAndItsShadow) {
-  Scene s;
-  s.spheres.push_back({"ball", vec3(0.0f), 1.0f, 0.0f, {MaterialKind::Diffuse, vec3(0.5f)}});
-  s.light = {vec3(0.0f, 10.0f, 0.0f), 1000.0f};
-  const World world(s);
-  const double I = 1000.0;
-  for (double deg : {0.0, 30.0, 60.0}) {
-    const double a = deg * kPi / 180.0;
-    const glm::dvec3 p(std::sin(a), std::cos(a), 0.0), to = glm::dvec3(0, 10, 0) - p;
-    const double d2 = glm::dot(to, to), cos_s = glm::dot(p, to) / std::sqrt(d2);
-    std::uint64_t rays = 0;
-    const LightArrival arrival = direct_light(world, on_ball(world, vec3(p)), {vec3(p), vec3(p)}, rays);
-    ASSERT_TRUE(arrival.lit) << deg;
-    const float weight = arrival.weight;
-    EXPECT_EQ(rays, 1u);
-    // I/(4 pi d^2) * <N, w_i> / pi: the albedo is the caller's.
-    const double expect = I * cos_s / (4.0 * kPi * kPi * d2);
-    EXPECT_NEAR(weight, expect, 1e-5 * expect) << deg;
-  }
-  std::uint64_t rays = 0;
-  const vec3 down(0.0f, -1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(world, on_ball(world, down), {down, down}, rays).lit);  // facing away
-  EXPECT_EQ(rays, 0u);
-
-  s.spheres.push_back({"blocker", vec3(0.0f, 5.0f, 0.0f), 1.0f, 0.0f, {}});
-  const World blocked(s);
-  const vec3 up(0.0f, 1.0f, 0.0f);
-  EXPECT_FALSE(direct_light(blocked, on_ball(blocked, up), {up, up}, rays).lit);
-  EXPECT_EQ(rays, 1u);
-}
-
-// I cos / d^2 leaves float's range before the 1/(4 pi^2) brings the term
-// back into it (here 1e29 / 1e-10 = 1e39): the term is finite and right, not
-// an infinity whose product with a zero channel was a NaN, a dropped sample.
-TEST(DirectLight, ABrightLightCloseAboveTheSurfaceIsFiniteAndMatchesTheFormula) {
-  Scene s;
-  s.spheres.push_back({"ball", vec3(0.0f), 1.0f, 0.0f, {MaterialKind::Diffuse, vec3(0.5f)}});
-  s.light = {vec3(0.0f, 1.00001f, 0.0f), 1e29f};
-  const World world(s);
-  const vec3 up(0.0f, 1.0f, 0.0f);
-  const SurfaceHit h = on_ball(world, up);
-  // The formula in double, from the render-space floats the term is made of.
-  const glm::dvec3 to = glm::dvec3(world.light().position) - glm::dvec3(h.p);
-  const double d2 = glm::dot(to, to), cos_s = to.y / std::sqrt(d2);
-  const double expect = 1e29 * cos_s / (4.0 * kPi * kPi * d2);
-  ASSERT_LT(expect, 3e38);
-  ASSERT_GT(1e29 * cos_s / d2, 3.5e38);  // the case: the partial product overflows float
-  std::uint64_t rays = 0;
-  const LightArrival a = direct_light(world, h, {up, up}, rays);
-  ASSERT_TRUE(a.lit);
-  EXPECT_NEAR(a.weight, expect, 1e-5 * expect);
-}
-
-// Split factors per diffuse hit: the listed ones, then 1 past the end.
-TEST(Splitting, FactorsPerDiffuseHitEndInOnes) {
-  RenderSettings settings;
-  settings.split = {4, 2};
-  const vec3 white(1.0f);
-  EXPECT_EQ(split_factor(settings, 0, white), 4);
-  EXPECT_EQ(split_factor(settings, 1, white), 2);
-  EXPECT_EQ(split_factor(settings, 2, white), 1);
-  settings.split_weights = vec3(1.0f, 1.0f, 0.25f);
-  EXPECT_EQ(split_factor(settings, 0, vec3(0.0f, 0.0f, 0.7f)), 1);  // blue only: 4 * 0.25
 }

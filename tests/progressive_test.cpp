@@ -1,5 +1,6 @@
 // The progressive renderer: determinism across thread counts and pass
-// sizes, generations that never mix, snapshots that stay consistent.
+// sizes, generations that never mix, snapshots that stay consistent, a
+// raised target that continues the accumulation, and pass progress.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -224,24 +225,81 @@ TEST(Progressive, QuickPassesAreNeverAccumulated) {
   EXPECT_EQ(s.sum, render(after, 1).sum);
 }
 
-TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
-  PixelSum p;
-  p.add(vec3(1.0f, 2.0f, 4.0f), 0);
-  p.add(vec3(NAN, 0.0f, 0.0f), 1);
-  p.add(vec3(0.0f, INFINITY, 0.0f), 2);
-  p.add(vec3(1.0f, 0.0f, 0.0f), 3);
-  EXPECT_EQ(p.dropped, 2u);
-  EXPECT_EQ(p.sum, glm::dvec3(2.0, 2.0, 4.0));
-  const double y1 = 0.2126f * 1.0f + 0.7152f * 2.0f + 0.0722f * 4.0f, y2 = 0.2126f;
-  EXPECT_EQ(p.sum_sq, y1 * y1 + y2 * y2);
+// Raising the target after it was reached renders more passes in the same
+// generation, and the result is the same image as a render to the higher
+// target from the start (samples are indexed, so nothing repeats).
+TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 40;
+  s.camera.height = 32;
+  s.settings.indirect = s.settings.aa = true;
+  s.settings.spp = 2;
+  s.settings.target_spp = 4;
 
-  Film film;
-  film.reset(2, 1);
-  film.add(1, p);
-  Snapshot s;
-  film.publish(s);
-  s.spp = 2;
-  const Image img = mean_image(s);
-  EXPECT_EQ(img.width, 2);
-  EXPECT_EQ(img.rgb, std::vector<float>({0, 0, 0, 1, 1, 2}));
+  ProgressiveRenderer r(2);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 4));
+  Snapshot first;
+  r.snapshot(first);
+  EXPECT_TRUE(first.done);
+  r.set_target_spp(10);
+  ASSERT_TRUE(r.wait_for(gen, 10));
+  Snapshot more;
+  r.snapshot(more);
+  r.stop();
+  EXPECT_EQ(more.generation, gen);
+  EXPECT_EQ(more.spp, 10u);
+  EXPECT_EQ(more.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
+  EXPECT_TRUE(more.done);
+
+  s.settings.target_spp = 10;
+  const Snapshot ref = render(s, 2);  // the same target from the start
+  EXPECT_EQ(more.sum, ref.sum);
+  EXPECT_EQ(more.sum_sq, ref.sum_sq);
+}
+
+// A pass reports its tiles as they finish; between passes nothing runs.
+TEST(TargetSpp, PassProgressCountsTiles) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 70;  // 3 x 2 tiles of 32
+  s.camera.height = 40;
+  s.settings.spp = 1;
+  s.settings.target_spp = 2;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  ASSERT_TRUE(r.wait_for(gen, 2));
+  // Done: the workers wait, so the progress is "not rendering".
+  for (int k = 0; k < 100 && r.pass_progress().rendering; ++k)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto p = r.pass_progress();
+  r.stop();
+  EXPECT_FALSE(p.rendering);
+  EXPECT_EQ(p.generation, gen);
+  EXPECT_EQ(p.tiles_total, 6);
+  EXPECT_EQ(p.tiles_done, 6);
+}
+
+// During a long pass the tiles done climb before the pass publishes.
+TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
+  Scene s = load_scene(resolve_scene("three-balls"));
+  s.camera.width = 64;  // 2 x 2 tiles
+  s.camera.height = 64;
+  s.settings.spp = 300;
+  s.settings.target_spp = 300;
+  ProgressiveRenderer r(1);
+  const std::uint64_t gen = r.set_scene(s);
+  r.start();
+  bool seen_midway = false;
+  for (int k = 0; k < 2000 && !seen_midway; ++k) {
+    const auto p = r.pass_progress();
+    Snapshot snap;
+    const bool published = r.snapshot(snap) && snap.spp > 0;
+    seen_midway = p.rendering && p.generation == gen && p.pass_spp == 300 &&
+                  p.tiles_done > 0 && p.tiles_done < p.tiles_total && !published;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  r.stop();
+  EXPECT_TRUE(seen_midway);
 }

@@ -12,6 +12,7 @@
 #include "geometry/offset.h"
 #include "geometry/sphere.h"
 #include "geometry/sphere_set.h"
+#include "geometry/surface_point.h"
 #include "scene/scene_io.h"
 
 using namespace whisker;
@@ -170,12 +171,13 @@ TEST(Sphere, HitPointIsOnTheSurface) {
                                                     std::uniform_real_distribution<float>(-1, 1)(g)))};
     const float t = intersect_sphere(wall, r);
     ASSERT_NE(t, kInf);
-    const vec3 p = sphere_hit_point(r, refine_sphere_t(wall, r, t));
+    const SurfacePoint h = sphere_surface_point(wall, 0, r, t);
+    const vec3 p = h.p;
     const long double dx = p.x, dy = (long double)p.y + 1000.0L, dz = p.z;
     const long double dist = std::sqrt(dx * dx + dy * dy + dz * dz) - 990.0L;
     EXPECT_LT(std::fabs(dist), 8 * 6.2e-5L);  // 8 ULPs of 990
     // The normal is (p - c)/r, unit to float precision without normalising.
-    EXPECT_NEAR(glm::length(sphere_normal(wall, p)), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(h.ng), 1.0f, 1e-6f);
   }
 }
 

@@ -1,8 +1,11 @@
 # Viewer tests (included from tests/CMakeLists.txt when WHISKER_VIEWER is ON).
 
-# Camera moves and edit classification: plain functions, no window.
-add_executable(viewer_logic_tests ${CMAKE_CURRENT_SOURCE_DIR}/viewer_logic_test.cpp
+# The viewer's modules without a window: viewer/<module>_test.cpp tests
+# src/viewer/<module>.cpp (camera moves, edit classification, input, ...).
+file(GLOB WHISKER_VIEWER_TEST_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/viewer/*_test.cpp)
+add_executable(viewer_logic_tests ${WHISKER_VIEWER_TEST_SOURCES}
   ${CMAKE_CURRENT_SOURCE_DIR}/viewer_readout_test.cpp)
+target_include_directories(viewer_logic_tests PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 target_link_libraries(viewer_logic_tests PRIVATE whisker_viewer GTest::gtest_main)
 gtest_discover_tests(viewer_logic_tests DISCOVERY_TIMEOUT 60)
 

@@ -97,18 +97,4 @@ inline double solve_sphere_t(const Sphere& s, const Ray& r, float t_float) {
   return std::fabs(t0 - t_float) < std::fabs(t1 - t_float) ? t0 : t1;
 }
 
-// The hit point at the refined distance t, evaluated in double: t is exact
-// to double rounding, so o + t d lies on the sphere within about one float ULP
-// once rounded (no projection needed; Sphere.HitPointIsOnTheSurface).
-inline vec3 sphere_hit_point(const Ray& r, double t) {
-  return vec3(exact_origin(r) + t * glm::dvec3(r.d));
-}
-
-// Outward geometric normal (inward for an inverted shell): p is on the
-// sphere, so dividing by the radius gives a unit vector without a sqrt.
-inline vec3 sphere_normal(const Sphere& s, const vec3& p) {
-  const vec3 n = (p - s.center) * (1.0f / s.radius);
-  return s.inverted ? -n : n;
-}
-
 }  // namespace whisker

@@ -178,62 +178,22 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
 
 void World::record(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
   if (hit.kind == PrimKind::Sphere) record_sphere(ray, hit, out);
-  else record_triangle(ray, hit, out);
+  else record_triangle(hit, out);
 }
 
-// The distance refined in double (sphere.h), the point and the normal taken
-// from that double hit: the normal of a point rounded to float would be off
-// by an ULP of the coordinates over the radius (0.4 % for a 1e-3 ball at 50).
 void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
-  const Sphere& s = spheres_[hit.prim];
-  const double t = refine_sphere_t(s, ray, hit.t);
-  const glm::dvec3 pd = exact_origin(ray) + t * glm::dvec3(ray.d);
-  const glm::dvec3 nd = pd - glm::dvec3(s.center);
-  out.t = float(t);
-  split_double(pd, out.p, out.err);  // the low part in err (offset.h)
-  // pd lies on the sphere to double rounding: dividing by the radius gives
-  // a unit vector to far below float's precision, without a square root.
-  out.outward = vec3(nd * (1.0 / double(s.radius)));
-  out.ng = s.inverted ? -out.outward : out.outward;
-  out.ns = out.ng;
+  static_cast<SurfacePoint&>(out) = sphere_surface_point(spheres_[hit.prim], hit.prim, ray, hit.t);
   out.material = &sphere_material_[hit.prim];
-  out.sphere = hit.prim;
 }
 
-// The point from the barycentric weights, not o + t d: a convex combination
-// of the vertices lies on their plane but for its own rounding, whatever the
-// error of the weights (they move it within the plane), so its distance from
-// the plane is bounded by err below, while o + t d carries the error of t
-// times |d| off the plane. The bound: b0 = 1 - u - v (two roundings, its
-// error e|b| makes the weights sum to 1 + e, moving p by e|p|), three
-// products and two sums, each rounding by at most 2^-24 of its magnitude: at
-// most 7 roundings of terms bounded by sum |b_i v_i|, pbrt-v4's gamma(7)
-// (Pharr, Jakob, Humphreys, "Physically Based Rendering" 4th ed. 6.8.5),
-// doubled for the terms a first-order bound leaves out.
-void World::record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
+void World::record_triangle(const Hit& hit, SurfaceHit& out) const {
   const MeshData& m = *mesh_;
   const std::uint32_t obj = m.object[hit.prim];
-  const Triangle& tri = m.tris[hit.prim];
-  const float b0 = 1.0f - hit.u - hit.v;
-  const vec3 a = b0 * tri.v0, b = hit.u * tri.v1, c = hit.v * tri.v2;
-  out.t = hit.t;
-  out.p = a + b + c;
-  constexpr float kGamma7x2 = 2.0f * 7.0f * 0x1p-24f / (1.0f - 7.0f * 0x1p-24f);
-  out.err = (glm::abs(a) + glm::abs(b) + glm::abs(c)) * kGamma7x2;
-  out.ng = m.ng[hit.prim];
-  out.ns = out.ng;
-  if (mesh_vertex_normals_[obj] && !m.ns.empty()) {
-    const auto& cn = m.ns[hit.prim];
-    // Corners whose normals cancel (or are zero) leave no direction: the
-    // geometric normal then, not the NaN of normalising zero.
-    const vec3 ns = b0 * cn[0] + hit.u * cn[1] + hit.v * cn[2];
-    const float len2 = glm::dot(ns, ns);
-    if (len2 > 0.0f && len2 < kInf) out.ns = glm::normalize(ns);
-  }
+  static_cast<SurfacePoint&>(out) =
+      triangle_surface_point(m.tris[hit.prim], m.ng[hit.prim], hit.t, hit.u, hit.v);
+  if (mesh_vertex_normals_[obj] && !m.ns.empty())
+    out.ns = interpolated_normal(m.ns[hit.prim], hit.u, hit.v, out.ng);
   out.material = &mesh_material_[obj];
-  out.sphere = kNoSkip;
-  out.outward = out.ng;
-  (void)ray;
 }
 
 bool World::occluded(const Ray& ray, std::uint32_t end_sphere) const {

@@ -14,40 +14,18 @@
 #include "geometry/bvh_method.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
+#include "geometry/surface_point.h"
 #include "geometry/object_bvh.h"
 #include "geometry/offset.h"
 #include "scene/scene.h"
 
 namespace whisker {
 
-struct SurfaceHit {
-  float t = kInf;
-  vec3 p{0.0f};   // hit point (render space; see World)
-  vec3 ng{0.0f};  // unit geometric normal (outward; inward for inverted shells)
-  vec3 ns{0.0f};  // unit shading normal (== ng unless vertex normals are on)
+// A hit record (geometry/surface_point.h) with the material that was hit;
+// its positions are in render space (see World).
+struct SurfaceHit : SurfacePoint {
   const Material* material = nullptr;
-  // How rays leave this point (geometry/offset.h): a sphere's hit is left
-  // from p itself, excluding that sphere (`sphere`, `outward` its outward
-  // normal; `err` then holds the low part of the double hit, p + err); a
-  // triangle's from p moved off the plane past `err`, a per-coordinate bound
-  // on the rounding error of p.
-  std::uint32_t sphere = kNoSkip;
-  vec3 outward{0.0f};
-  vec3 err{0.0f};
 };
-
-// A ray leaving the hit in direction d, and a shadow ray from it to the
-// point `target` (geometry/offset.h).
-inline Ray spawn_ray(const SurfaceHit& h, const vec3& d) {
-  return spawn_from(h.p, h.ng, h.err, h.sphere, h.outward, d);
-}
-inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target) {
-  return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target);
-}
-// The same given the unit direction wi and distance from h.p to target.
-inline Ray spawn_shadow_ray(const SurfaceHit& h, const vec3& target, const vec3& wi, float dist) {
-  return spawn_shadow_from(h.p, h.ng, h.err, h.sphere, h.outward, target, wi, dist);
-}
 
 // Render space: the World holds every position relative to the scene's
 // camera (pbrt-v4's "camera-world" space), subtracted in double from the
@@ -141,7 +119,7 @@ class World {
   std::uint32_t light_sphere_passed(const Ray& ray) const;
   void build_mesh(const Scene& scene, BvhMethod method);
   void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
-  void record_triangle(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
+  void record_triangle(const Hit& hit, SurfaceHit& out) const;
 
   std::vector<Sphere> spheres_;
   ObjectBvh objects_;  // spheres and the mesh, one structure
