@@ -14,13 +14,12 @@
 
 #include "render/light_connect.h"
 #include "scene/scene_io.h"
+#include "closed_sphere.h"
 #include "render_util.h"
 
 using namespace whisker;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The cat scene (or another bundled one) at a small size, fov narrowed by
 // `zoom` so that a pixel covers what one of the 512 x 512 image does.
@@ -133,18 +132,9 @@ TEST_P(ConnectClosedSphere, OffCentreLightKeepsTheClosedForm) {
   for (int k : GetParam().split) paths *= k;
   for (int depth : {1, 3}) {
     const int size = 6, spp = 2048 / paths;
-    Scene scene;
-    scene.name = "closed-sphere";
-    scene.spheres.push_back({"shell", vec3(0.0f), float(R), 0.0f, {MaterialKind::Diffuse, vec3(float(rho))}});
-    scene.light = {vec3(c), float(I)};
-    scene.camera.position = vec3(0.0f, 0.0f, 5.0f);
-    scene.camera.look_at = vec3(0.0f, 0.0f, -10.0f);
-    scene.camera.width = scene.camera.height = size;
-    scene.camera.fov_deg = 90.0f;
+    Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
     RenderSettings& st = scene.settings;
-    st.indirect = st.connect = true;
-    st.max_depth = depth;
-    st.spp = st.target_spp = spp;
+    st.connect = true;
     st.split = GetParam().split;
     st.sampler = GetParam().sampler;
     st.reuse = GetParam().reuse;
@@ -225,20 +215,12 @@ TEST(LightConnect, LightExactlyOnAClosedSphereKeepsTheClosedForm) {
   const double rho = 0.5, I = 1000.0, R = 10.0;
   const glm::dvec3 c(0.0, R, 0.0);
   const int size = 6, spp = 2048, depth = 2;
-  Scene scene;
-  scene.name = "closed-sphere";
-  scene.spheres.push_back({"shell", vec3(0.0f), float(R), 0.0f, {MaterialKind::Diffuse, vec3(float(rho))}});
-  scene.light = {c, float(I)};
+  Scene scene = closed_sphere(float(rho), vec3(c), depth, spp, size);
   scene.camera.position = vec3(0.0f, -5.0f, 0.0f);
   scene.camera.look_at = vec3(0.0f, -10.0f, 0.0f);
   scene.camera.up = vec3(0.0f, 0.0f, 1.0f);
-  scene.camera.width = scene.camera.height = size;
-  scene.camera.fov_deg = 90.0f;
-  RenderSettings& st = scene.settings;
-  st.indirect = st.connect = true;
-  st.max_depth = depth;
-  st.spp = st.target_spp = spp;
-  st.split = {2, 2};
+  scene.settings.connect = true;
+  scene.settings.split = {2, 2};
   const Snapshot s = render(scene);
   ASSERT_EQ(s.nan_count, 0u);
   const CameraFrame cam(scene.camera);
