@@ -178,33 +178,8 @@ TEST_P(OffCentre, LightInClosedSphere) {
     scene.settings.sampler = GetParam().sampler;
     scene.settings.split_weights = GetParam().split_weights;
     scene.settings.reuse = GetParam().reuse;
-    const Snapshot s = render(scene);
-    const int B = depth + 1;
-    const CameraFrame cam(scene.camera);
-    double chi2 = 0.0;
-    for (int i = 0; i < size; ++i) {
-      for (int j = 0; j < size; ++j) {
-        const Ray r = cam.ray(i, j, 0.0f, 0.0f);
-        const glm::dvec3 o(r.o), d(r.d);
-        const double b = glm::dot(o, d);
-        const double t = -b + std::sqrt(b * b - (glm::dot(o, o) - R * R));
-        const glm::dvec3 y = o + t * d;
-        const glm::dvec3 n = -y / R;  // inward
-        const glm::dvec3 to = c - y;
-        const double d2 = glm::dot(to, to);
-        const double cos = glm::dot(n, to) / std::sqrt(d2);
-        const double expect = rho / kPi * (I * cos / d2 + I / (R * R) * rho * (1 - std::pow(rho, B - 1)) / (1 - rho)) / (4 * kPi);
-        const std::size_t p = std::size_t(i) * size + j;
-        const double mean = s.sum[3 * p] / double(spp);
-        const double var = (s.sum_sq[p] / double(spp) - mean * mean) * spp / (spp - 1.0);
-        const double se = std::sqrt(var / spp);
-        EXPECT_NEAR(mean, expect, 5 * se + 1e-9) << "depth " << depth << " pixel " << i << "," << j;
-        chi2 += (mean - expect) * (mean - expect) / (se * se);
-      }
-    }
-    // 36 pixels: the sum of squared z-scores is chi-square with 36 dof;
-    // P(chi2 > 80) < 1e-4.
-    EXPECT_LT(chi2, 80.0) << "depth " << depth;
+    expect_closed_form(render(scene), scene, ClosedSphereLight{rho, I, R, c},
+                       "depth " + std::to_string(depth));
   }
 }
 

@@ -138,33 +138,8 @@ TEST_P(ConnectClosedSphere, OffCentreLightKeepsTheClosedForm) {
     st.split = GetParam().split;
     st.sampler = GetParam().sampler;
     st.reuse = GetParam().reuse;
-    const Snapshot s = render(scene);
-    ASSERT_EQ(s.nan_count, 0u);
-    const CameraFrame cam(scene.camera);
-    double chi2 = 0.0;
-    for (int i = 0; i < size; ++i) {
-      for (int j = 0; j < size; ++j) {
-        const Ray r = cam.ray(i, j, 0.0f, 0.0f);
-        const glm::dvec3 o(r.o), d(r.d);
-        const double b = glm::dot(o, d);
-        const double t = -b + std::sqrt(b * b - (glm::dot(o, o) - R * R));
-        const glm::dvec3 y = o + t * d;
-        const glm::dvec3 to = c - y;
-        const double d2 = glm::dot(to, to);
-        const double cos = glm::dot(-y / R, to) / std::sqrt(d2);
-        const double expect = rho / kPi *
-                              (I * cos / d2 + I / (R * R) * rho * (1 - std::pow(rho, depth)) / (1 - rho)) /
-                              (4 * kPi);
-        const std::size_t p = std::size_t(i) * size + j;
-        const double mean = s.sum[3 * p] / double(spp);
-        const double var = (s.sum_sq[p] / double(spp) - mean * mean) * spp / (spp - 1.0);
-        const double se = std::sqrt(var / spp);
-        EXPECT_NEAR(mean, expect, 5 * se + 1e-9) << "depth " << depth << " pixel " << i << "," << j;
-        chi2 += (mean - expect) * (mean - expect) / (se * se);
-      }
-    }
-    // 36 pixels: chi-square with 36 degrees of freedom; P(chi2 > 80) < 1e-4.
-    EXPECT_LT(chi2, 80.0) << "depth " << depth;
+    expect_closed_form(render(scene), scene, ClosedSphereLight{rho, I, R, c},
+                       "depth " + std::to_string(depth));
   }
 }
 
@@ -221,30 +196,7 @@ TEST(LightConnect, LightExactlyOnAClosedSphereKeepsTheClosedForm) {
   scene.camera.up = vec3(0.0f, 0.0f, 1.0f);
   scene.settings.connect = true;
   scene.settings.split = {2, 2};
-  const Snapshot s = render(scene);
-  ASSERT_EQ(s.nan_count, 0u);
-  const CameraFrame cam(scene.camera);
-  double chi2 = 0.0;
-  for (int i = 0; i < size; ++i) {
-    for (int j = 0; j < size; ++j) {
-      const Ray r = cam.ray(i, j, 0.0f, 0.0f);
-      const glm::dvec3 o = glm::dvec3(scene.camera.position), d(r.d);
-      const double b = glm::dot(o, d);
-      const glm::dvec3 y = o + (-b + std::sqrt(b * b - (glm::dot(o, o) - R * R))) * d;
-      const glm::dvec3 to = c - y;
-      const double d2 = glm::dot(to, to);
-      const double cos = glm::dot(-y / R, to) / std::sqrt(d2);
-      const double expect =
-          rho / kPi * (I * cos / d2 + I / (2 * R * R) * rho * (1 - std::pow(rho, depth)) / (1 - rho)) / (4 * kPi);
-      const std::size_t p = std::size_t(i) * size + j;
-      const double mean = s.sum[3 * p] / double(spp);
-      const double var = (s.sum_sq[p] / double(spp) - mean * mean) * spp / (spp - 1.0);
-      const double se = std::sqrt(var / spp);
-      EXPECT_NEAR(mean, expect, 5 * se + 1e-9) << "pixel " << i << "," << j;
-      chi2 += (mean - expect) * (mean - expect) / (se * se);
-    }
-  }
-  EXPECT_LT(chi2, 80.0);  // chi-square, 36 degrees of freedom: P(> 80) < 1e-4
+  expect_closed_form(render(scene), scene, ClosedSphereLight{rho, I, R, c, 0.5}, "light on the sphere");
 }
 
 // What it is for: at the 512 x 512 image's pixel size, on the cat, the
