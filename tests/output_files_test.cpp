@@ -11,8 +11,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/image_io.h"
 #include "render/film.h"
-#include "render/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #include "scene/settings.h"

@@ -18,7 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 #include "run_whisker.h"
 
 namespace fs = std::filesystem;

@@ -13,10 +13,10 @@
 
 #include "app/shards.h"
 #include "app/signals.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "render/progressive.h"
-#include "render/stats_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #include "scene/settings_json.h"

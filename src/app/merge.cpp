@@ -8,10 +8,10 @@
 
 #include "app/cli.h"
 #include "app/shards.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "scene/quote.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
-#include "render/stats_io.h"
 
 namespace whisker {
 

@@ -11,8 +11,8 @@
 #include <system_error>
 
 #include "geometry/mesh.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
 
 #include <sys/resource.h>
 #include <sys/sysinfo.h>

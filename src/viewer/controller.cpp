@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/image_io.h"
 #include "render/film.h"
-#include "render/image_io.h"
 #include "scene/scene_io.h"
 #include "scene/settings_json.h"
 #include "viewer/display.h"

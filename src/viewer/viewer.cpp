@@ -18,9 +18,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "render/progressive.h"
-#include "render/stats_io.h"
 #include "scene/scene_io.h"
 #include "scene/world.h"
 #include "viewer/camera_control.h"

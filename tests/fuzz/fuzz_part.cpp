@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "fuzz_common.h"
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 
 namespace {
 

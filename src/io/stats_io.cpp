@@ -1,10 +1,10 @@
-#include "render/stats_io.h"
+#include "io/stats_io.h"
 
 #include <type_traits>
 
 #include <nlohmann/json.hpp>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 #include "scene/quote.h"
 #include "scene/settings_json.h"
 

@@ -1,4 +1,4 @@
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 
 #include <cerrno>
 #include <charconv>
@@ -10,7 +10,7 @@
 #include <exception>
 #include <filesystem>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>

@@ -1,6 +1,6 @@
 // Writing images: PNG (the report's mapping), PFM and EXR (linear radiance).
 // Every writer goes through a temporary file renamed into place after
-// checked writes (render/atomic_file.h), so an interrupted run or a full
+// checked writes (io/atomic_file.h), so an interrupted run or a full
 // disk never leaves a broken image under its final name.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "render/atomic_file.h"
+#include "io/atomic_file.h"
 #include "render/image.h"
 
 namespace whisker {
