@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "render/film.h"
 #include "scene/quote.h"

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "app/cli.h"
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"

@@ -10,7 +10,8 @@
 #include <exception>
 #include <filesystem>
 
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/image_error.h"
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>

@@ -16,7 +16,7 @@
 #include <sys/random.h>
 #include <unistd.h>
 
-#include "io/image_io.h"
+#include "io/image_error.h"
 
 namespace whisker {
 

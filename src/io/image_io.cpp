@@ -18,6 +18,8 @@
 #include <OpenEXR/ImfStringAttribute.h>
 #endif
 
+#include "io/atomic_file.h"
+
 namespace whisker {
 
 namespace fs = std::filesystem;

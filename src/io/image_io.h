@@ -4,19 +4,14 @@
 // disk never leaves a broken image under its final name.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "io/atomic_file.h"
+#include "io/image_error.h"
 #include "render/image.h"
 
 namespace whisker {
-
-struct ImageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
 // (light intensity applied), docs/SCENES.md "Pixel value shown".

@@ -4,7 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/image_io.h"
+#include "io/atomic_file.h"
+#include "io/image_error.h"
 #include "scene/quote.h"
 #include "scene/settings_json.h"
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "render/film.h"
 #include "scene/scene_io.h"
