@@ -365,7 +365,7 @@ TEST(Accumulation, InfiniteSamplesAreDroppedAndCounted) {
   scene.camera.width = scene.camera.height = 1;
   scene.settings.spp = scene.settings.target_spp = 4;
   const Snapshot s = render(scene);
-  EXPECT_EQ(s.nan_count, 4u);
+  EXPECT_EQ(s.counters.nan_count, 4u);
   EXPECT_EQ(s.sum[0], 0.0f);
   EXPECT_TRUE(std::isfinite(s.sum[0]));
 }

@@ -59,8 +59,8 @@ void expect_same_expectation(const char* name, int width, int height, int spp, f
       float(2.0 * std::atan(std::tan(a.camera.fov_deg * 3.14159265358979 / 360.0) / zoom) * 360.0 / 3.14159265358979);
   const Snapshot plain = render(a);
   const Snapshot reused = render(b);
-  ASSERT_EQ(plain.nan_count, 0u);
-  ASSERT_EQ(reused.nan_count, 0u);
+  ASSERT_EQ(plain.counters.nan_count, 0u);
+  ASSERT_EQ(reused.counters.nan_count, 0u);
   double chi2 = 0.0;
   int counted = 0;
   std::vector<double> ratios;  // per pixel, variance reused / plain

@@ -286,7 +286,7 @@ TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
   r.stop();
   EXPECT_EQ(more.generation, gen);
   EXPECT_EQ(more.spp, 10u);
-  EXPECT_EQ(more.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
+  EXPECT_EQ(more.counters.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
   EXPECT_TRUE(more.done);
 
   s.settings.target_spp = 10;

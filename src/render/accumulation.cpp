@@ -120,10 +120,7 @@ Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
   a.sum = snap.exact_sum;
   a.sum_sq = snap.exact_sum_sq;
   if (snap.spp > 0) a.ranges = {{first_sample, first_sample + snap.spp}};
-  a.passes = snap.passes;
-  a.nan_count = snap.nan_count;
-  a.rays = snap.rays;
-  a.seconds = snap.seconds;
+  a.counters = snap.counters;
   a.id = id;
   return a;
 }
@@ -136,10 +133,7 @@ Snapshot snapshot_of(const Accumulation& acc) {
   for (std::size_t k = 0; k < acc.sum.size(); ++k) s.sum[k] = float(acc.sum[k]);
   s.sum_sq = acc.sum_sq;
   s.spp = acc.samples();
-  s.passes = acc.passes;
-  s.nan_count = acc.nan_count;
-  s.rays = acc.rays;
-  s.seconds = acc.seconds;
+  s.counters = acc.counters;
   s.done = true;
   s.exact_sum = acc.sum;
   s.exact_sum_sq = acc.sum_sq;
@@ -196,12 +190,7 @@ Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector
   out.width = parts[0].acc.width;
   out.height = parts[0].acc.height;
   out.id = parts[0].acc.id;
-  for (const auto& p : parts) {
-    out.passes += p.acc.passes;
-    out.nan_count += p.acc.nan_count;
-    out.rays += p.acc.rays;
-    out.seconds += p.acc.seconds;
-  }
+  for (const auto& p : parts) out.counters += p.acc.counters;
   // The union of the ranges, touching ones joined.
   for (const Owned& o : all) {
     if (!out.ranges.empty() && out.ranges.back().end == o.r.begin)

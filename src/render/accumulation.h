@@ -48,8 +48,7 @@ struct Accumulation {
   std::vector<double> sum;     // RGB sums, width*height*3, row 0 = top
   std::vector<double> sum_sq;  // luminance sums of squares, width*height
   std::vector<SampleRange> ranges;  // sorted and disjoint
-  std::uint64_t passes = 0, nan_count = 0, rays = 0;
-  double seconds = 0.0;  // render time, summed over parts
+  RenderCounters counters;          // summed over parts
   RenderIdentity id;
 
   std::uint64_t samples() const;  // per pixel: the ranges' total length

@@ -22,10 +22,29 @@ inline float luminance(const glm::vec3& c) {
 }
 
 // The NaN policy: a sample with a non-finite channel is never accumulated;
-// it is dropped and counted (Snapshot::nan_count).
+// it is dropped and counted (RenderCounters::nan_count).
 inline bool finite_sample(const glm::vec3& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
+
+// What rendering took and met, beside the samples: one set per generation,
+// per accumulation file, per merge. Parts of one render add up (a merge, a
+// resumed render's earlier passes), so the merged counters are the sums.
+struct RenderCounters {
+  std::uint64_t passes = 0;
+  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped
+  std::uint64_t rays = 0;       // rays traced
+  double seconds = 0.0;         // render time
+
+  RenderCounters& operator+=(const RenderCounters& o) {
+    passes += o.passes;
+    nan_count += o.nan_count;
+    rays += o.rays;
+    seconds += o.seconds;
+    return *this;
+  }
+  bool operator==(const RenderCounters&) const = default;
+};
 
 // A consistent copy of the accumulation: sums and count always belong together.
 struct Snapshot {
@@ -43,10 +62,7 @@ struct Snapshot {
   std::uint64_t spp = 0;      // samples per pixel in `sum`
   std::uint64_t generation = 0;
   std::uint64_t version = 0;  // bumps with every published pass
-  std::uint64_t passes = 0;
-  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped this generation
-  std::uint64_t rays = 0;       // rays traced this generation
-  double seconds = 0.0;         // render time this generation
+  RenderCounters counters;    // this generation's
   bool done = false;            // reached the target samples per pixel
   // A quick pass's image (ProgressiveRenderer::set_preview: one path per
   // sample, shown in the first moments after an edit), never a render's.

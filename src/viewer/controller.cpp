@@ -155,7 +155,7 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
 
 ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool display_units) {
   char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3f", sn.seconds);
+  std::snprintf(seconds, sizeof seconds, "%.3f", sn.counters.seconds);
   const nlohmann::json light{
       {"position", {scene.light.position.x, scene.light.position.y, scene.light.position.z}},
       {"intensity", scene.light.intensity}};
@@ -163,7 +163,7 @@ ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool displ
           {"whisker.units", display_units ? "display: 1.0 = 255^2.2 radiance, the report's white"
                                           : "scene: radiance, light intensity applied"},
           {"whisker.spp", std::to_string(sn.spp)},
-          {"whisker.passes", std::to_string(sn.passes)},
+          {"whisker.passes", std::to_string(sn.counters.passes)},
           {"whisker.seed", std::to_string(scene.settings.seed)},
           {"whisker.seconds", seconds},
           {"whisker.camera", nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump()},
