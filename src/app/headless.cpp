@@ -193,7 +193,6 @@ int run_headless(const HeadlessOptions& o) {
   if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 
   ProgressiveRenderer renderer(o.threads);
-  renderer.set_publish_exact(!o.out_sum.empty());
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);

@@ -117,8 +117,8 @@ Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
   Accumulation a;
   a.width = snap.width;
   a.height = snap.height;
-  a.sum = snap.exact_sum;
-  a.sum_sq = snap.exact_sum_sq;
+  a.sum = snap.sum;
+  a.sum_sq = snap.sum_sq;
   if (snap.spp > 0) a.ranges = {{first_sample, first_sample + snap.spp}};
   a.counters = snap.counters;
   a.id = id;
@@ -129,14 +129,11 @@ Snapshot snapshot_of(const Accumulation& acc) {
   Snapshot s;
   s.width = acc.width;
   s.height = acc.height;
-  s.sum.resize(acc.sum.size());
-  for (std::size_t k = 0; k < acc.sum.size(); ++k) s.sum[k] = float(acc.sum[k]);
+  s.sum = acc.sum;
   s.sum_sq = acc.sum_sq;
   s.spp = acc.samples();
   s.counters = acc.counters;
   s.done = true;
-  s.exact_sum = acc.sum;
-  s.exact_sum_sq = acc.sum_sq;
   return s;
 }
 

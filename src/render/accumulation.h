@@ -58,12 +58,11 @@ struct AccumulationError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The accumulation of a snapshot published with its exact sums, whose
-// samples start at `first_sample`.
+// The accumulation of a snapshot whose samples start at `first_sample`.
 Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
                              const RenderIdentity& id);
-// A snapshot of an accumulation (float sums as the film publishes them), so
-// mean_image and the stats see it as they see a render.
+// A snapshot of an accumulation, so mean_image and the stats see it as they
+// see a render.
 Snapshot snapshot_of(const Accumulation& acc);
 
 // The first field in which a and b differ ("scene", "scene file or meshes",

@@ -49,7 +49,12 @@ struct RenderCounters {
 // A consistent copy of the accumulation: sums and count always belong together.
 struct Snapshot {
   int width = 0, height = 0;
-  std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
+  // RGB radiance sums, width*height*3, row 0 = top: the film's double sums
+  // as they are, which accumulation files merge and resume from exactly.
+  // What is shown or written rounds them to float first (mean_image, mean,
+  // the viewer's texture): the images are float, so a sum past float's
+  // range shows as infinite there (docs/NUMERICS.md).
+  std::vector<double> sum;
   // Per-pixel sum of squared luminance (noise estimate); double, since a
   // square doubles the exponent: float overflows for radiance near 1e19
   // and underflows below 1e-19 (light intensities of 1e30 and 1e-30).
@@ -69,14 +74,10 @@ struct Snapshot {
   bool preview = false;
   std::size_t triangles = 0;  // the scene's geometry, for display
   std::size_t bvh_nodes = 0;
-  // The film's double sums as they are, when the renderer is asked to
-  // publish them (ProgressiveRenderer::set_publish_exact): for accumulation
-  // files, which must merge and resume exactly. Empty otherwise.
-  std::vector<double> exact_sum, exact_sum_sq;
 
   // Mean radiance of pixel (x, y), channel c.
   float mean(int x, int y, int c) const {
-    return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
+    return spp ? float(sum[(std::size_t(y) * width + x) * 3 + c]) / float(spp) : 0.0f;
   }
   // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
   // sum_px mean_px, from the luminance sums of squares; per-pixel variances,
@@ -141,8 +142,6 @@ class Film {
 
   // Copies the sums into `s`.
   void publish(Snapshot& s) const;
-  // Copies the double sums as they are into s.exact_sum and s.exact_sum_sq.
-  void publish_exact(Snapshot& s) const;
   // Starts from these sums (a resumed render); sizes must match the film's.
   // The half images are then unknown: the scale figures say so.
   void load(const std::vector<double>& sum, const std::vector<double>& sum_sq);

@@ -404,7 +404,6 @@ void ProgressiveRenderer::end_pass() {
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
   job.film.publish(s);
-  if (publish_exact_) job.film.publish_exact(s);
   s.spp = job.spp_done;
   s.first_sample = job.first_sample;
   s.generation = job.generation;

@@ -182,7 +182,7 @@ Snapshot shown_means(const ViewerState& s) {
   const auto means = [](const Snapshot& sn) {
     Snapshot m = sn;
     const Image img = mean_image(sn);
-    m.sum = img.rgb;
+    m.sum.assign(img.rgb.begin(), img.rgb.end());
     m.spp = 1;
     m.sum_sq.assign(sn.sum_sq.size(), 0.0);
     for (std::size_t p = 0; p < m.sum_sq.size() && sn.spp; ++p)
