@@ -18,13 +18,16 @@ import pathlib
 import re
 import sys
 
-# Each layer may include itself and the layers listed for it.
+# Each layer may include itself and the layers listed for it: geometry <
+# scene < render < io (the file formats, which write render's types), with
+# app and viewer on top.
 LAYERS = {
     "geometry": {"geometry"},
     "scene": {"geometry", "scene"},
     "render": {"geometry", "scene", "render"},
-    "app": {"geometry", "scene", "render", "app", "viewer"},
-    "viewer": {"geometry", "scene", "render", "viewer"},
+    "io": {"geometry", "scene", "render", "io"},
+    "app": {"geometry", "scene", "render", "io", "app", "viewer"},
+    "viewer": {"geometry", "scene", "render", "io", "viewer"},
 }
 
 

@@ -14,7 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;

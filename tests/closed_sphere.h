@@ -65,7 +65,7 @@ struct ClosedSphereLight {
 // for the 6 x 6 images of these tests (P(> 80) < 1e-4).
 inline void expect_closed_form(const Snapshot& s, const Scene& scene, const ClosedSphereLight& k,
                                const std::string& what) {
-  ASSERT_EQ(s.nan_count, 0u) << what;
+  ASSERT_EQ(s.counters.nan_count, 0u) << what;
   const CameraFrame cam(scene.camera);
   const double n = double(s.spp);
   double chi2 = 0.0;

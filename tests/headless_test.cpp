@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 #include "scene/settings.h"
 #include "run_whisker.h"
 

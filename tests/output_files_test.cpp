@@ -11,8 +11,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/atomic_file.h"
+#include "io/image_io.h"
 #include "render/film.h"
-#include "render/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #include "scene/settings.h"

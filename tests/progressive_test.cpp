@@ -39,9 +39,9 @@ TEST(Progressive, SameImageForAnyThreadCountAndPassSize) {
   EXPECT_EQ(one.sum_sq, two.sum_sq);
   // Pass size changes only the order of double additions of float samples.
   for (std::size_t k = 0; k < one.sum.size(); ++k) ASSERT_NEAR(one.sum[k], five.sum[k], 1e-5f * std::abs(one.sum[k]) + 1e-9f);
-  EXPECT_EQ(one.passes, 4u);
-  EXPECT_EQ(five.passes, 1u);
-  EXPECT_GT(one.rays, std::uint64_t(48 * 40 * 8));
+  EXPECT_EQ(one.counters.passes, 4u);
+  EXPECT_EQ(five.counters.passes, 1u);
+  EXPECT_GT(one.counters.rays, std::uint64_t(48 * 40 * 8));
 }
 
 TEST(Progressive, DifferentSeedsGiveDifferentNoise) {
@@ -118,7 +118,7 @@ TEST(Progressive, ReachingTheTargetStops) {
   r.snapshot(snap);
   r.stop();
   EXPECT_EQ(snap.spp, 7u);  // 3 + 3 + 1: the last pass is trimmed to the target
-  EXPECT_EQ(snap.passes, 3u);
+  EXPECT_EQ(snap.counters.passes, 3u);
   EXPECT_TRUE(snap.done);
 }
 
@@ -161,7 +161,7 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   EXPECT_GT(differ, pairs / 2);
   EXPECT_FALSE(own.preview);
   EXPECT_EQ(own.spp, 2u);
-  EXPECT_EQ(own.passes, 2u);
+  EXPECT_EQ(own.counters.passes, 2u);
   EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
 }
 
@@ -201,7 +201,7 @@ TEST(Progressive, ADeterministicEstimateStopsAfterOnePass) {
   r.snapshot(s);
   r.stop();
   EXPECT_TRUE(s.done);
-  EXPECT_EQ(s.passes, 1u);
+  EXPECT_EQ(s.counters.passes, 1u);
   EXPECT_EQ(s.spp, 1u);
 }
 
@@ -250,7 +250,7 @@ TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
   r.stop();
   EXPECT_EQ(more.generation, gen);
   EXPECT_EQ(more.spp, 10u);
-  EXPECT_EQ(more.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
+  EXPECT_EQ(more.counters.passes, 5u);  // 2 + 2 + 2 + 2 + 2: the first two were kept
   EXPECT_TRUE(more.done);
 
   s.settings.target_spp = 10;

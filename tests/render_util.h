@@ -42,8 +42,8 @@ inline PixelStat pixel_stat(const Snapshot& s, std::size_t p) {
 // is sqrt(2 x count)), and no single one is far out. Returns the median
 // ratio of the pixels' variances, b's over a's.
 inline double expect_same_expectation(const Snapshot& a, const Snapshot& b, const char* what) {
-  EXPECT_EQ(a.nan_count, 0u) << what;
-  EXPECT_EQ(b.nan_count, 0u) << what;
+  EXPECT_EQ(a.counters.nan_count, 0u) << what;
+  EXPECT_EQ(b.counters.nan_count, 0u) << what;
   double chi2 = 0.0;
   int counted = 0;
   std::vector<double> ratios;

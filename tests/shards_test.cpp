@@ -18,7 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 #include "run_whisker.h"
 
 namespace fs = std::filesystem;
@@ -94,7 +94,7 @@ TEST_F(Shards, MergedRangesEqualTheRenderWithThoseRangesAsPassesBitForBit) {
     EXPECT_TRUE(same_bits(full.sum, merged.sum));
     EXPECT_TRUE(same_bits(full.sum_sq, merged.sum_sq));
     EXPECT_EQ(merged.ranges, (std::vector<SampleRange>{{0, 6}}));
-    EXPECT_EQ(merged.passes, 2u);
+    EXPECT_EQ(merged.counters.passes, 2u);
     EXPECT_TRUE(fs::file_size(f("m.png")) > 0);
   }
 }
@@ -133,7 +133,7 @@ TEST_F(Shards, AKilledRenderResumesFromItsCheckpointExactly) {
   ASSERT_EQ(part.ranges.size(), 1u);
   EXPECT_EQ(part.ranges[0].begin, 0u);
   EXPECT_LT(part.ranges[0].end, std::stoull(frames)) << "the render finished before it was killed";
-  EXPECT_EQ(part.passes, part.ranges[0].end);
+  EXPECT_EQ(part.counters.passes, part.ranges[0].end);
   render("--spp 1 --frames " + frames + " --resume " + f("ck.exr") + " --out-float " +
          f("resumed.pfm"));
   EXPECT_EQ(bytes(f("full.pfm")), bytes(f("resumed.pfm")));
@@ -228,7 +228,7 @@ TEST(AccumulationFile, DamagedSumsAndCountersAreRefusedNamingTheField) {
   a.sum = {1, 2, 3, 4, 5, 6};
   a.sum_sq = {1, 2};
   a.ranges = {{0, 4}};
-  a.passes = 1;
+  a.counters.passes = 1;
   a.id = {"room", "0123456789abcdef", R"({"seed":1})"};
   const fs::path p = fs::temp_directory_path() / ("whisker-bad-" + std::to_string(::getpid()) + ".exr");
   const auto refusal = [&](const Accumulation& bad) {
@@ -251,9 +251,9 @@ TEST(AccumulationFile, DamagedSumsAndCountersAreRefusedNamingTheField) {
     EXPECT_NE(refusal(b).find("sumsq.Y of pixel (0, 0)"), std::string::npos) << refusal(b);
   }
   Accumulation b = a;
-  b.seconds = nan;
+  b.counters.seconds = nan;
   EXPECT_NE(refusal(b).find("whisker.seconds \"nan\""), std::string::npos) << refusal(b);
-  b.seconds = -2;
+  b.counters.seconds = -2;
   EXPECT_NE(refusal(b).find("whisker.seconds \"-2\""), std::string::npos) << refusal(b);
   EXPECT_EQ(refusal(a), "(read)");
   fs::remove(p);
@@ -271,10 +271,10 @@ TEST(AccumulationFile, RoundTripKeepsEveryBitAndTheHeader) {
   for (int k = 0; k < 18; ++k) a.sum.push_back(special[k % 8] * (k + 1));
   for (int k = 0; k < 6; ++k) a.sum_sq.push_back(special[(k + 3) % 8]);
   a.ranges = {{0, 512}, {1024, 2048}};
-  a.passes = 3;
-  a.nan_count = 5;
-  a.rays = 1ull << 40;
-  a.seconds = 12.25;
+  a.counters.passes = 3;
+  a.counters.nan_count = 5;
+  a.counters.rays = 1ull << 40;
+  a.counters.seconds = 12.25;
   a.id = {"room", "0123456789abcdef", R"({"seed":1})"};
   const fs::path p = fs::temp_directory_path() / ("whisker-acc-" + std::to_string(::getpid()) + ".exr");
   write_accumulation(p.string(), a);
@@ -285,10 +285,10 @@ TEST(AccumulationFile, RoundTripKeepsEveryBitAndTheHeader) {
   EXPECT_TRUE(same_bits(a.sum, b.sum));
   EXPECT_TRUE(same_bits(a.sum_sq, b.sum_sq));
   EXPECT_EQ(b.ranges, a.ranges);
-  EXPECT_EQ(b.passes, 3u);
-  EXPECT_EQ(b.nan_count, 5u);
-  EXPECT_EQ(b.rays, 1ull << 40);
-  EXPECT_EQ(b.seconds, 12.25);
+  EXPECT_EQ(b.counters.passes, 3u);
+  EXPECT_EQ(b.counters.nan_count, 5u);
+  EXPECT_EQ(b.counters.rays, 1ull << 40);
+  EXPECT_EQ(b.counters.seconds, 12.25);
   EXPECT_EQ(b.id.scene, "room");
   EXPECT_EQ(b.id.scene_hash, "0123456789abcdef");
   EXPECT_EQ(b.id.settings, R"({"seed":1})");

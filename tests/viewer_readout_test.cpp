@@ -7,7 +7,7 @@
 #include <fstream>
 #include <unistd.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 #include "render/progressive.h"
 #include "scene/scene_io.h"
 #include "viewer/readout.h"

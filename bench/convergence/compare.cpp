@@ -41,7 +41,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #include "whisker_version.h"

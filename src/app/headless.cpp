@@ -13,10 +13,10 @@
 
 #include "app/shards.h"
 #include "app/signals.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "render/progressive.h"
-#include "render/stats_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #include "scene/settings_json.h"
@@ -34,13 +34,13 @@ std::string camera_json(const Scene& scene) {
 ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
                                   const Snapshot& snap) {
   char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3f", snap.seconds);
+  std::snprintf(seconds, sizeof seconds, "%.3f", snap.counters.seconds);
   return {{"whisker.scene", scene.name},
           {"whisker.units", o.display_units
                                 ? "display: 1.0 = 255^2.2 radiance, the report's white"
                                 : "scene: radiance, light intensity applied"},
           {"whisker.spp", std::to_string(snap.spp)},
-          {"whisker.passes", std::to_string(snap.passes)},
+          {"whisker.passes", std::to_string(snap.counters.passes)},
           {"whisker.seed", std::to_string(scene.settings.seed)},
           {"whisker.seconds", seconds},
           {"whisker.camera", camera_json(scene)},
@@ -55,7 +55,7 @@ ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
 // The images, the summary line and the stats of a finished render.
 int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, int threads) {
   const bool exact = deterministic_estimate(scene);
-  const double secs = snap.seconds;
+  const double secs = snap.counters.seconds;
   const double pixels = double(snap.width) * snap.height;
   const double samples = pixels * double(snap.spp);
   const Image img = mean_image(snap);
@@ -72,8 +72,8 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
       "%s %dx%d: %llu spp in %.3f s, %.3g samples/s, %.3g rays/s, %llu NaN/Inf dropped, %d "
       "threads",
       printable(scene.name).c_str(), snap.width, snap.height, (unsigned long long)snap.spp, secs,
-      secs > 0 ? samples / secs : 0.0, secs > 0 ? double(snap.rays) / secs : 0.0,
-      (unsigned long long)snap.nan_count, threads);
+      secs > 0 ? samples / secs : 0.0, secs > 0 ? double(snap.counters.rays) / secs : 0.0,
+      (unsigned long long)snap.counters.nan_count, threads);
   if (exact) std::printf(", exact (deterministic estimate: every pass is the same)");
   for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.stats_json})
     if (!out->empty()) std::printf(" -> %s", printable(*out).c_str());
@@ -113,7 +113,7 @@ int finish_interrupted(const HeadlessOptions& o, const Scene& scene, const Snaps
   }
   write_outputs(o, scene, snap, threads);
   std::fprintf(stderr, "whisker: interrupted: wrote the %llu passes completed (%llu spp)\n",
-               (unsigned long long)snap.passes, (unsigned long long)snap.spp);
+               (unsigned long long)snap.counters.passes, (unsigned long long)snap.spp);
   return interrupted_exit_code(sig);
 }
 
@@ -193,7 +193,6 @@ int run_headless(const HeadlessOptions& o) {
   if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 
   ProgressiveRenderer renderer(o.threads);
-  renderer.set_publish_exact(!o.out_sum.empty());
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);

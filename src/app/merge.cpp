@@ -8,10 +8,10 @@
 
 #include "app/cli.h"
 #include "app/shards.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "scene/quote.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
-#include "render/stats_io.h"
 
 namespace whisker {
 
@@ -98,7 +98,7 @@ int run_merge(int argc, char** argv) {
                 printable(acc.id.scene).c_str(), acc.width, acc.height, o.parts.size(),
                 o.parts.size() == 1 ? "" : "s",
                 ranges_to_string(acc.ranges).c_str(), (unsigned long long)acc.samples(),
-                (unsigned long long)acc.passes);
+                (unsigned long long)acc.counters.passes);
     return 0;
   } catch (const std::bad_alloc&) {
     return usage_error("merge: out of memory while merging the parts");

@@ -7,7 +7,8 @@
 #include <unistd.h>
 
 #include "app/cli.h"
-#include "render/image_io.h"
+#include "io/atomic_file.h"
+#include "io/image_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 

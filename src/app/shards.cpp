@@ -11,8 +11,8 @@
 #include <system_error>
 
 #include "geometry/mesh.h"
-#include "render/accumulation_io.h"
-#include "render/image_io.h"
+#include "io/accumulation_io.h"
+#include "io/image_io.h"
 
 #include <sys/resource.h>
 #include <sys/sysinfo.h>
@@ -49,12 +49,12 @@ std::string check_resume(const std::string& path, const Scene& scene, const Rend
 
 std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume) {
   const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
-  // The film's double sums (32), two float snapshots (20 each), three
-  // output images (12 each); with --out-sum the exact sums in both
-  // snapshots, the checkpoint's copy and its file's words and mean; with
-  // --resume the part read.
-  std::uint64_t per_pixel = 32 + 2 * 20 + 3 * 12;
-  if (out_sum) per_pixel += 2 * 32 + 52 + 52 + 32 + 12;
+  // The film's double sums (32), two snapshots of them (32 each), three
+  // output images (12 each); with --out-sum the checkpoint's snapshot and
+  // its accumulation's copy, and the file's writer's snapshot, words and
+  // mean; with --resume the part read.
+  std::uint64_t per_pixel = 32 + 2 * 32 + 3 * 12;
+  if (out_sum) per_pixel += 32 + 32 + 32 + 32 + 12;
   if (resume) per_pixel += 32;
   std::uint64_t bytes = pixels * per_pixel;
   for (const MeshObject& m : scene.meshes)
@@ -180,7 +180,7 @@ void Checkpointer::run() {
   std::unique_lock lock(mutex_);
   while (!cv_.wait_for(lock, period, [this] { return stopping_; })) {
     if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.preview ||
-        snap.done || snap.spp <= written || snap.exact_sum.empty())
+        snap.done || snap.spp <= written)
       continue;
     try {
       write_accumulation(path_, accumulation_of(snap, plan_.start.first_sample, plan_.id));

@@ -5,7 +5,7 @@
 
 #include <unistd.h>
 
-#include "render/atomic_file.h"
+#include "io/atomic_file.h"
 
 namespace whisker {
 

@@ -117,13 +117,10 @@ Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
   Accumulation a;
   a.width = snap.width;
   a.height = snap.height;
-  a.sum = snap.exact_sum;
-  a.sum_sq = snap.exact_sum_sq;
+  a.sum = snap.sum;
+  a.sum_sq = snap.sum_sq;
   if (snap.spp > 0) a.ranges = {{first_sample, first_sample + snap.spp}};
-  a.passes = snap.passes;
-  a.nan_count = snap.nan_count;
-  a.rays = snap.rays;
-  a.seconds = snap.seconds;
+  a.counters = snap.counters;
   a.id = id;
   return a;
 }
@@ -132,17 +129,11 @@ Snapshot snapshot_of(const Accumulation& acc) {
   Snapshot s;
   s.width = acc.width;
   s.height = acc.height;
-  s.sum.resize(acc.sum.size());
-  for (std::size_t k = 0; k < acc.sum.size(); ++k) s.sum[k] = float(acc.sum[k]);
+  s.sum = acc.sum;
   s.sum_sq = acc.sum_sq;
   s.spp = acc.samples();
-  s.passes = acc.passes;
-  s.nan_count = acc.nan_count;
-  s.rays = acc.rays;
-  s.seconds = acc.seconds;
+  s.counters = acc.counters;
   s.done = true;
-  s.exact_sum = acc.sum;
-  s.exact_sum_sq = acc.sum_sq;
   return s;
 }
 
@@ -196,12 +187,7 @@ Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector
   out.width = parts[0].acc.width;
   out.height = parts[0].acc.height;
   out.id = parts[0].acc.id;
-  for (const auto& p : parts) {
-    out.passes += p.acc.passes;
-    out.nan_count += p.acc.nan_count;
-    out.rays += p.acc.rays;
-    out.seconds += p.acc.seconds;
-  }
+  for (const auto& p : parts) out.counters += p.acc.counters;
   // The union of the ranges, touching ones joined.
   for (const Owned& o : all) {
     if (!out.ranges.empty() && out.ranges.back().end == o.r.begin)

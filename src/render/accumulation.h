@@ -48,8 +48,7 @@ struct Accumulation {
   std::vector<double> sum;     // RGB sums, width*height*3, row 0 = top
   std::vector<double> sum_sq;  // luminance sums of squares, width*height
   std::vector<SampleRange> ranges;  // sorted and disjoint
-  std::uint64_t passes = 0, nan_count = 0, rays = 0;
-  double seconds = 0.0;  // render time, summed over parts
+  RenderCounters counters;          // summed over parts
   RenderIdentity id;
 
   std::uint64_t samples() const;  // per pixel: the ranges' total length
@@ -59,12 +58,11 @@ struct AccumulationError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The accumulation of a snapshot published with its exact sums, whose
-// samples start at `first_sample`.
+// The accumulation of a snapshot whose samples start at `first_sample`.
 Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
                              const RenderIdentity& id);
-// A snapshot of an accumulation (float sums as the film publishes them), so
-// mean_image and the stats see it as they see a render.
+// A snapshot of an accumulation, so mean_image and the stats see it as they
+// see a render.
 Snapshot snapshot_of(const Accumulation& acc);
 
 // The first field in which a and b differ ("scene", "scene file or meshes",

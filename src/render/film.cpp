@@ -7,14 +7,25 @@ namespace whisker {
 static_assert(float(kLuminanceWeights[0]) == 0.2126f && float(kLuminanceWeights[1]) == 0.7152f &&
               float(kLuminanceWeights[2]) == 0.0722f);
 
+namespace {
+
+// Pixel p's luminance sum from its RGB sums rounded to float: the noise
+// figures are of the image as it is shown and written, and their rounding
+// thresholds below are set for float sums.
+double luminance_sum(const Snapshot& s, std::size_t p) {
+  const double* w = kLuminanceWeights;
+  return w[0] * float(s.sum[3 * p]) + w[1] * float(s.sum[3 * p + 1]) + w[2] * float(s.sum[3 * p + 2]);
+}
+
+}  // namespace
+
 double Snapshot::pixel_standard_error() const {
   if (spp < 2 || width <= 0 || height <= 0) return INFINITY;
   const double n = double(spp);
   double var_sum = 0.0, mean_sum = 0.0;
   const std::size_t pixels = std::size_t(width) * height;
-  const double* w = kLuminanceWeights;
   for (std::size_t p = 0; p < pixels; ++p) {
-    const double m = (w[0] * sum[3 * p] + w[1] * sum[3 * p + 1] + w[2] * sum[3 * p + 2]) / n;
+    const double m = luminance_sum(*this, p) / n;
     // m comes from float sums of float samples, sum_sq from float
     // luminances: each is known to about 2^-23 of m^2, so a smaller
     // difference is their rounding, not variance (a noise-free image).
@@ -35,7 +46,6 @@ double Snapshot::scale_standard_error(int k) const {
   const std::uint64_t n = spp, n_odd = (first_sample + spp) / 2 - first_sample / 2;
   const std::uint64_t n_even = n - n_odd;
   if (n_odd == 0 || n_even == 0) return NAN;
-  const double* w = kLuminanceWeights;
   const int bw = width / k, bh = height / k;
   double var_sum = 0.0, mean_sum = 0.0;
   for (int by = 0; by < bh; ++by)
@@ -45,7 +55,7 @@ double Snapshot::scale_standard_error(int k) const {
         for (int x = bx * k; x < (bx + 1) * k; ++x) {
           const std::size_t p = std::size_t(y) * width + x;
           odd += odd_sum[p];
-          all += w[0] * sum[3 * p] + w[1] * sum[3 * p + 1] + w[2] * sum[3 * p + 2];
+          all += luminance_sum(*this, p);
         }
       // The block's two half means a and b are independent estimates of its
       // mean m = (n_odd a + n_even b) / n, so E(a - b)^2 = var(a) + var(b),
@@ -78,7 +88,7 @@ Image mean_image(const Snapshot& s) {
   img.height = s.height;
   img.rgb.resize(s.sum.size());
   const float inv = s.spp ? 1.0f / float(s.spp) : 0.0f;
-  for (std::size_t k = 0; k < s.sum.size(); ++k) img.rgb[k] = s.sum[k] * inv;
+  for (std::size_t k = 0; k < s.sum.size(); ++k) img.rgb[k] = float(s.sum[k]) * inv;
   return img;
 }
 
@@ -95,18 +105,12 @@ void Film::reset(int width, int height) {
 void Film::publish(Snapshot& s) const {
   s.width = width_;
   s.height = height_;
-  s.sum.resize(acc_.size());
-  for (std::size_t k = 0; k < acc_.size(); ++k) s.sum[k] = float(acc_[k]);
+  s.sum = acc_;
   s.sum_sq = acc_sq_;
   if (halves_known_)
     s.odd_sum = acc_odd_;
   else
     s.odd_sum.clear();
-}
-
-void Film::publish_exact(Snapshot& s) const {
-  s.exact_sum = acc_;
-  s.exact_sum_sq = acc_sq_;
 }
 
 void Film::load(const std::vector<double>& sum, const std::vector<double>& sum_sq) {

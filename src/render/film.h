@@ -22,15 +22,39 @@ inline float luminance(const glm::vec3& c) {
 }
 
 // The NaN policy: a sample with a non-finite channel is never accumulated;
-// it is dropped and counted (Snapshot::nan_count).
+// it is dropped and counted (RenderCounters::nan_count).
 inline bool finite_sample(const glm::vec3& c) {
   return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z);
 }
 
+// What rendering took and met, beside the samples: one set per generation,
+// per accumulation file, per merge. Parts of one render add up (a merge, a
+// resumed render's earlier passes), so the merged counters are the sums.
+struct RenderCounters {
+  std::uint64_t passes = 0;
+  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped
+  std::uint64_t rays = 0;       // rays traced
+  double seconds = 0.0;         // render time
+
+  RenderCounters& operator+=(const RenderCounters& o) {
+    passes += o.passes;
+    nan_count += o.nan_count;
+    rays += o.rays;
+    seconds += o.seconds;
+    return *this;
+  }
+  bool operator==(const RenderCounters&) const = default;
+};
+
 // A consistent copy of the accumulation: sums and count always belong together.
 struct Snapshot {
   int width = 0, height = 0;
-  std::vector<float> sum;     // RGB radiance sums, width*height*3, row 0 = top
+  // RGB radiance sums, width*height*3, row 0 = top: the film's double sums
+  // as they are, which accumulation files merge and resume from exactly.
+  // What is shown or written rounds them to float first (mean_image, mean,
+  // the viewer's texture): the images are float, so a sum past float's
+  // range shows as infinite there (docs/NUMERICS.md).
+  std::vector<double> sum;
   // Per-pixel sum of squared luminance (noise estimate); double, since a
   // square doubles the exponent: float overflows for radiance near 1e19
   // and underflows below 1e-19 (light intensities of 1e30 and 1e-30).
@@ -43,24 +67,17 @@ struct Snapshot {
   std::uint64_t spp = 0;      // samples per pixel in `sum`
   std::uint64_t generation = 0;
   std::uint64_t version = 0;  // bumps with every published pass
-  std::uint64_t passes = 0;
-  std::uint64_t nan_count = 0;  // NaN/Inf samples dropped this generation
-  std::uint64_t rays = 0;       // rays traced this generation
-  double seconds = 0.0;         // render time this generation
+  RenderCounters counters;    // this generation's
   bool done = false;            // reached the target samples per pixel
   // A quick pass's image (ProgressiveRenderer::set_preview: one path per
   // sample, shown in the first moments after an edit), never a render's.
   bool preview = false;
   std::size_t triangles = 0;  // the scene's geometry, for display
   std::size_t bvh_nodes = 0;
-  // The film's double sums as they are, when the renderer is asked to
-  // publish them (ProgressiveRenderer::set_publish_exact): for accumulation
-  // files, which must merge and resume exactly. Empty otherwise.
-  std::vector<double> exact_sum, exact_sum_sq;
 
   // Mean radiance of pixel (x, y), channel c.
   float mean(int x, int y, int c) const {
-    return spp ? sum[(std::size_t(y) * width + x) * 3 + c] / float(spp) : 0.0f;
+    return spp ? float(sum[(std::size_t(y) * width + x) * 3 + c]) / float(spp) : 0.0f;
   }
   // Relative standard error of the image mean: sqrt(sum_px var_px/n) over
   // sum_px mean_px, from the luminance sums of squares; per-pixel variances,
@@ -125,8 +142,6 @@ class Film {
 
   // Copies the sums into `s`.
   void publish(Snapshot& s) const;
-  // Copies the double sums as they are into s.exact_sum and s.exact_sum_sq.
-  void publish_exact(Snapshot& s) const;
   // Starts from these sums (a resumed render); sizes must match the film's.
   // The half images are then unknown: the scale figures say so.
   void load(const std::vector<double>& sum, const std::vector<double>& sum_sq);

@@ -48,9 +48,9 @@ struct ProgressiveRenderer::Job {
   bool quick_active = false;  // this generation may still run quick passes
   std::uint64_t quick_spp = 0;
   double quick_seconds = 0.0;
-  std::uint64_t spp_done = 0, passes = 0, nan_count = 0, rays = 0;
+  std::uint64_t spp_done = 0;
+  RenderCounters counters;
   std::uint64_t first_sample = 0;  // sample index of the generation's first sample
-  double seconds = 0.0;
 
   // this pass
   std::uint64_t sample_base = 0;
@@ -287,8 +287,8 @@ bool ProgressiveRenderer::begin_pass() {
     job.height = job.scene.camera.height;
     job.tiles_x = (job.width + kTile - 1) / kTile;
     job.tiles_y = (job.height + kTile - 1) / kTile;
-    job.spp_done = job.passes = job.nan_count = job.rays = 0;
-    job.seconds = 0.0;
+    job.spp_done = 0;
+    job.counters = {};
     job.preview_pass = false;
     job.exact = deterministic_estimate(job.scene);
     job.film.reset(job.width, job.height);
@@ -338,10 +338,7 @@ void ProgressiveRenderer::adopt_start(const RenderStart& start) {
   const Accumulation& a = *start.resume;
   job.film.load(a.sum, a.sum_sq);
   job.spp_done = a.samples();
-  job.passes = a.passes;
-  job.nan_count = a.nan_count;
-  job.rays = a.rays;
-  job.seconds = a.seconds;
+  job.counters = a.counters;
 }
 
 bool ProgressiveRenderer::abandoning() const {
@@ -393,34 +390,25 @@ void ProgressiveRenderer::end_pass() {
     q.first_sample = 0;
     q.generation = job.generation;
     q.version += 1;
-    q.passes = job.quick_spp;
-    q.seconds = job.quick_seconds;
-    q.nan_count = 0;
-    q.rays = 0;
+    q.counters = {.passes = job.quick_spp, .seconds = job.quick_seconds};
     q.done = false;
     q.preview = true;
     publish_cv_.notify_all();
     return;
   }
   job.spp_done += std::uint64_t(job.pass_spp);
-  job.passes += 1;
-  job.nan_count += job.pass_nans;
-  job.rays += job.pass_rays;
-  job.seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
+  job.counters += {.passes = 1, .nan_count = job.pass_nans, .rays = job.pass_rays,
+                   .seconds = std::chrono::duration<double>(Clock::now() - job.pass_start).count()};
   const int target = job.scene.settings.target_spp;
 
   std::lock_guard lock(publish_mutex_);
   Snapshot& s = published_;
   job.film.publish(s);
-  if (publish_exact_) job.film.publish_exact(s);
   s.spp = job.spp_done;
   s.first_sample = job.first_sample;
   s.generation = job.generation;
   s.version += 1;
-  s.passes = job.passes;
-  s.nan_count = job.nan_count;
-  s.rays = job.rays;
-  s.seconds = job.seconds;
+  s.counters = job.counters;
   s.done = (target > 0 && job.spp_done >= std::uint64_t(target)) || (stop_when_exact_ && job.exact);
   s.preview = false;
   job_exact_published_ = job.exact;

@@ -94,9 +94,6 @@ class ProgressiveRenderer {
   // A generation whose estimate is deterministic (deterministic_estimate)
   // is done after its first pass, whatever its target. Off by default.
   void set_stop_when_exact(bool on) { stop_when_exact_ = on; }
-  // Publish the film's double sums too (Snapshot::exact_sum), for
-  // accumulation files. Off by default (a copy per pass).
-  void set_publish_exact(bool on) { publish_exact_ = on; }
 
   // Copies the latest published pass into `out` if its version differs from
   // out.version; returns whether it copied. Never waits for a pass.
@@ -126,7 +123,6 @@ class ProgressiveRenderer {
   std::atomic<bool> preview_enabled_{false};
   std::atomic<bool> stop_when_exact_{false};
   bool low_priority_ = false;
-  std::atomic<bool> publish_exact_{false};
   // pending state, guarded by pending_mutex_
   mutable std::mutex pending_mutex_;
   std::condition_variable pending_cv_;

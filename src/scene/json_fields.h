@@ -9,10 +9,11 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_io.h"
 #include "scene/quote.h"
+#include "scene/scene_error.h"
 
 namespace whisker {
 
@@ -111,12 +112,12 @@ class Fields {
     return has(key) ? point(key, lo, hi) : fallback;
   }
   // The same rounded to float: colours, directions.
-  vec3 vector(const char* key, double lo, double hi) const { return vec3(point(key, lo, hi)); }
-  vec3 vector(const char* key, double lo, double hi, vec3 fallback) const {
+  glm::vec3 vector(const char* key, double lo, double hi) const { return glm::vec3(point(key, lo, hi)); }
+  glm::vec3 vector(const char* key, double lo, double hi, glm::vec3 fallback) const {
     return has(key) ? vector(key, lo, hi) : fallback;
   }
-  vec3 direction(const char* key) const {
-    const vec3 v = vector(key, -1e30, 1e30);
+  glm::vec3 direction(const char* key) const {
+    const glm::vec3 v = vector(key, -1e30, 1e30);
     if (v.x == 0.0f && v.y == 0.0f && v.z == 0.0f) fail(field(key), "must not be zero-length");
     return v;
   }

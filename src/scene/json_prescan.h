@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/quote.h"
-#include "scene/scene_io.h"
+#include "scene/scene_error.h"
 
 namespace whisker {
 

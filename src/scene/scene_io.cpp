@@ -56,7 +56,7 @@ void read_camera(const Fields& c, Camera& cam) {
   cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
   cam.width = int(c.integer("width", 1, 16384, cam.width));
   cam.height = int(c.integer("height", 1, 16384, cam.height));
-  // The accumulation holds 32 bytes a pixel (plus a 16-byte snapshot):
+  // The accumulation holds 32 bytes a pixel (plus 32-byte snapshots):
   // 4096 x 4096 is half a gigabyte; beyond that, refuse rather than thrash.
   constexpr long long kMaxPixels = 4096LL * 4096LL;
   if ((long long)cam.width * cam.height > kMaxPixels)

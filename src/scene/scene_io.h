@@ -2,19 +2,13 @@
 #pragma once
 
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/scene_error.h"
 
 namespace whisker {
-
-// Thrown for a scene file that cannot be used. what() is one line naming the
-// file, and the field ("spheres[2].radius") or line:column of a syntax error.
-struct SceneError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // Where data (scenes/, cat.obj) is looked up, in this order: $WHISKER_ASSETS;
 // assets/ in the working folder; the data folder next to the binary

@@ -34,7 +34,7 @@ void blend_for_display(const Snapshot& own, const Snapshot& quick, const RenderS
   const double a = w_own / (w_own + w_quick) / double(own.spp) * double(own.spp);
   const double b = w_quick / (w_own + w_quick) / double(quick.spp) * double(own.spp);
   for (std::size_t k = 0; k < out.image.sum.size(); ++k)
-    out.image.sum[k] = float(a * double(own.sum[k]) + b * double(quick.sum[k]));
+    out.image.sum[k] = a * own.sum[k] + b * quick.sum[k];
   out.quick_spp = quick.spp;
   out.own_spp = own.spp;
 }

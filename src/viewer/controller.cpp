@@ -9,8 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "io/atomic_file.h"
+#include "io/image_io.h"
 #include "render/film.h"
-#include "render/image_io.h"
 #include "scene/scene_io.h"
 #include "scene/settings_json.h"
 #include "viewer/display.h"
@@ -154,7 +155,7 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
 
 ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool display_units) {
   char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3f", sn.seconds);
+  std::snprintf(seconds, sizeof seconds, "%.3f", sn.counters.seconds);
   const nlohmann::json light{
       {"position", {scene.light.position.x, scene.light.position.y, scene.light.position.z}},
       {"intensity", scene.light.intensity}};
@@ -162,7 +163,7 @@ ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool displ
           {"whisker.units", display_units ? "display: 1.0 = 255^2.2 radiance, the report's white"
                                           : "scene: radiance, light intensity applied"},
           {"whisker.spp", std::to_string(sn.spp)},
-          {"whisker.passes", std::to_string(sn.passes)},
+          {"whisker.passes", std::to_string(sn.counters.passes)},
           {"whisker.seed", std::to_string(scene.settings.seed)},
           {"whisker.seconds", seconds},
           {"whisker.camera", nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump()},
@@ -181,7 +182,7 @@ Snapshot shown_means(const ViewerState& s) {
   const auto means = [](const Snapshot& sn) {
     Snapshot m = sn;
     const Image img = mean_image(sn);
-    m.sum = img.rgb;
+    m.sum.assign(img.rgb.begin(), img.rgb.end());
     m.spp = 1;
     m.sum_sq.assign(sn.sum_sq.size(), 0.0);
     for (std::size_t p = 0; p < m.sum_sq.size() && sn.spp; ++p)

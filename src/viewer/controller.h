@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
 #include "render/progressive.h"
 #include "scene/scene.h"
 #include "viewer/viewer_state.h"

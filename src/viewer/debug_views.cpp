@@ -17,8 +17,8 @@ DebugImage render_debug_view(const Scene& scene, int view) {
   s.width = w;
   s.height = h;
   s.spp = 1;
-  s.sum.assign(std::size_t(w) * h * 3, 0.0f);
-  s.sum_sq.assign(std::size_t(w) * h, 0.0f);
+  s.sum.assign(std::size_t(w) * h * 3, 0.0);
+  s.sum_sq.assign(std::size_t(w) * h, 0.0);
   if (w <= 0 || h <= 0) return d;
   const World world(scene);
   const CameraFrame cam(scene.camera);

@@ -126,23 +126,26 @@ void Display::upload(const Snapshot& s, bool with_sq) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
   const bool resize = s.width != width_ || s.height != height_;
+  // The textures are float (GL takes no double texels): the snapshot's
+  // double sums are rounded as mean_image rounds them for the files. GL has
+  // copied the staging buffer when each call returns, so it is reused.
+  staging_.assign(s.sum.begin(), s.sum.end());
   glBindTexture(GL_TEXTURE_2D, tex_);
   if (resize)
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, s.width, s.height, 0, GL_RGB, GL_FLOAT,
-                 s.sum.data());
+                 staging_.data());
   else
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RGB, GL_FLOAT,
-                    s.sum.data());
+                    staging_.data());
   if (with_sq && s.sum_sq.size() >= std::size_t(s.width) * s.height) {
-    // The texture is float (GL takes no double texels); the snapshot's sums are double.
-    const std::vector<float> sq(s.sum_sq.begin(), s.sum_sq.end());
+    staging_.assign(s.sum_sq.begin(), s.sum_sq.end());
     glBindTexture(GL_TEXTURE_2D, tex_sq_);
     if (resize || !sq_valid_)
       glTexImage2D(GL_TEXTURE_2D, 0, GL_R32F, s.width, s.height, 0, GL_RED, GL_FLOAT,
-                   sq.data());
+                   staging_.data());
     else
       glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, s.width, s.height, GL_RED, GL_FLOAT,
-                      sq.data());
+                      staging_.data());
     sq_valid_ = true;
   } else if (resize) {
     sq_valid_ = false;

@@ -53,6 +53,9 @@ class Display {
   int width_ = 0, height_ = 0;
   int cache_w_ = 0, cache_h_ = 0;
   bool sq_valid_ = false;
+  // The sums rounded to float on their way to a texture, kept between
+  // uploads so a pass does not allocate an image's worth each time.
+  std::vector<float> staging_;
   bool cache_valid_ = false;
   float cache_spp_ = -1.0f;
   DisplayParams cache_params_;

@@ -52,7 +52,7 @@ ProgressInfo progress_of(const ViewerState& s) {
   ProgressInput in;
   const bool same = sn.generation == s.generation && !sn.preview;
   in.spp_done = same ? sn.spp : 0;
-  in.seconds_done = same ? sn.seconds : 0.0;
+  in.seconds_done = same ? sn.counters.seconds : 0.0;
   in.target_spp = s.applied.settings.target_spp;
   const auto& p = s.progress;
   // A finished pass is counted once it is published, not as in flight; a
@@ -94,11 +94,11 @@ void progress_lines(const ViewerState& s) {
   const double pixels = double(std::max(0, s.snap.width)) * std::max(0, s.snap.height);
   // Rays and passes are counted when a pass is published: until the first
   // pass of these settings is, they are not known yet ("-"), not zero.
-  const double secs = s.snap.generation == s.generation && !s.snap.preview ? s.snap.seconds : 0.0;
+  const double secs = s.snap.generation == s.generation && !s.snap.preview ? s.snap.counters.seconds : 0.0;
   char rays[32] = "-", passes[32] = "-";
   if (secs > 0.0) {
-    std::snprintf(rays, sizeof rays, "%s", human(s.snap.rays / secs).c_str());
-    std::snprintf(passes, sizeof passes, "%.2f", s.snap.passes / secs);
+    std::snprintf(rays, sizeof rays, "%s", human(s.snap.counters.rays / secs).c_str());
+    std::snprintf(passes, sizeof passes, "%.2f", s.snap.counters.passes / secs);
   }
   ImGui::Text("%s samples/s  %s rays/s  %s passes/s",
               p.spp_per_second > 0.0 ? human(p.spp_per_second * pixels).c_str() : "-", rays,
@@ -147,7 +147,7 @@ void error_plot(const ViewerState& s) {
     dl->AddLine(ImVec2(x_of(k - 1), y_of(v[k - 1])), ImVec2(x_of(k), y_of(v[k])),
                 IM_COL32(120, 200, 255, 255), 1.5f);
   // The history ends at the last published pass; the first pass has no error.
-  const unsigned long long last_pass = std::max<unsigned long long>(s.snap.passes, n);
+  const unsigned long long last_pass = std::max<unsigned long long>(s.snap.counters.passes, n);
   char first[32], last[32];
   std::snprintf(first, sizeof first, "pass %llu", last_pass - n + 1);
   std::snprintf(last, sizeof last, "pass %llu", last_pass);
@@ -173,7 +173,7 @@ void status_section(const ViewerState& s, double now) {
       "'(before the edit)' means the image still shows the previous settings.");
   error_plot(s);
   ImGui::Text("NaN/Inf dropped %llu  triangles %zu  since edit %.1f s",
-              (unsigned long long)sn.nan_count, s.triangles, now - s.last_change);
+              (unsigned long long)sn.counters.nan_count, s.triangles, now - s.last_change);
   tip("Samples that came out not-a-number or infinite are dropped and counted here. "
       "'since edit': time since the last change that restarted the render.");
   if (s.frame_ms_avg > 0.0f)

@@ -88,7 +88,7 @@ std::vector<unsigned char> map_like_display(const Snapshot& s, const DisplayPara
   if (std::fabs(report_k - 1.0f) < 1e-5f) report_k = 1.0f;
   for (std::size_t k = 0; k < pixels; ++k) {
     float mean[3];
-    for (int c = 0; c < 3; ++c) mean[c] = s.sum[3 * k + c] * inv;
+    for (int c = 0; c < 3; ++c) mean[c] = float(s.sum[3 * k + c]) * inv;
     float v[3];
     if (p.mode == 1) {
       const float m = luminance(glm::vec3(mean[0], mean[1], mean[2]));

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "render/image_io.h"
-#include "render/stats_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 
 namespace whisker {
 

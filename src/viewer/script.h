@@ -6,7 +6,7 @@
 
 #include <cstddef>
 
-#include "viewer/viewer.h"
+#include "viewer/viewer_options.h"
 #include "viewer/viewer_state.h"
 
 namespace whisker {

@@ -18,9 +18,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
-#include "render/image_io.h"
+#include "io/image_io.h"
+#include "io/stats_io.h"
 #include "render/progressive.h"
-#include "render/stats_io.h"
 #include "scene/scene_io.h"
 #include "scene/world.h"
 #include "viewer/camera_control.h"
@@ -284,7 +284,7 @@ struct Session {
                  (unsigned long long)s.shown.image.generation,
                  (unsigned long long)s.shown.quick_spp, (unsigned long long)s.shown.own_spp,
                  (unsigned long long)s.snap.generation, (unsigned long long)s.snap.spp,
-                 (unsigned long long)s.snap.passes, own_current ? s.rse : std::nan(""));
+                 (unsigned long long)s.snap.counters.passes, own_current ? s.rse : std::nan(""));
     std::fflush(log);
   }
 
@@ -328,8 +328,8 @@ struct Session {
                  "viewer: %s, generation %llu, %llu passes, %llu spp, %.2f passes/s; UI %zu "
                  "frames, mean %.2f ms, p95 %.2f ms\n",
                  s.scene_label.c_str(), (unsigned long long)s.generation,
-                 (unsigned long long)s.snap.passes, (unsigned long long)s.snap.spp,
-                 s.snap.seconds > 0 ? s.snap.passes / s.snap.seconds : 0.0,
+                 (unsigned long long)s.snap.counters.passes, (unsigned long long)s.snap.spp,
+                 s.snap.counters.seconds > 0 ? s.snap.counters.passes / s.snap.counters.seconds : 0.0,
                  fstats.total_ms.size(), FrameStats::mean(fstats.total_ms),
                  FrameStats::pct(fstats.total_ms, 0.95));
   }

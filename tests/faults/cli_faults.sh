@@ -777,7 +777,7 @@ PY
   memory-bounds)
     # A render that cannot fit ulimit -v is refused before it starts,
     # naming what it needs (it ended in "terminate ... bad_alloc", exit 134);
-    # one at the bound of docs/RELIABILITY.md (108 bytes a pixel with --out,
+    # one at the bound of docs/RELIABILITY.md (132 bytes a pixel with --out,
     # plus the program's own 150 MB) is rendered.
     sanitized && skip "a sanitizer build cannot start under ulimit -v"
     exr=0
@@ -788,7 +788,7 @@ PY
     expect_rc 2
     expect_err "^whisker: not enough memory for rendering 4096 x 4096 pixels: needs about [0-9]+ MB, and the memory limit \(ulimit -v\) leaves [0-9]+ MB$"
     scene 1024 1024
-    (ulimit -v $(((150 + 1024 * 1024 * 108 / 1000000 ) * 1000)) &&
+    (ulimit -v $(((150 + 1024 * 1024 * 132 / 1000000 ) * 1000)) &&
       "$bin" --headless --scene scene.json --quiet --frames 1 --depth 0 --threads 2 --out at-bound.png >out.txt 2>err.txt)
     rc=$?
     expect_rc 0

@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "fuzz_common.h"
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 
 namespace {
 
@@ -19,7 +19,7 @@ void check(const whisker::Accumulation& a, bool with_sums) {
     if (a.ranges[i].begin >= a.ranges[i].end) __builtin_trap();
     if (i > 0 && a.ranges[i].begin < a.ranges[i - 1].end) __builtin_trap();
   }
-  if (!std::isfinite(a.seconds) || a.seconds < 0) __builtin_trap();
+  if (!std::isfinite(a.counters.seconds) || a.counters.seconds < 0) __builtin_trap();
   if (!with_sums) return;
   const std::size_t pixels = std::size_t(a.width) * std::size_t(a.height);
   if (a.sum.size() != pixels * 3 || a.sum_sq.size() != pixels) __builtin_trap();

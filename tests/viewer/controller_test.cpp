@@ -213,7 +213,7 @@ TEST(Compare, HoldKeepsTheImageThroughAnEdit) {
   EXPECT_EQ(s.held.spp, 2u);
   EXPECT_EQ(s.compare, kCompareWipe);
   EXPECT_NE(s.held_note.find("Fresnel off"), std::string::npos) << s.held_note;
-  const std::vector<float> held = s.held.sum;
+  const std::vector<double> held = s.held.sum;
   s.edited.settings.fresnel = true;  // the three balls have glass: a restart
   const std::uint64_t before = s.generation;
   ctl.apply_edits(0.0);

@@ -1,4 +1,4 @@
-#include "render/accumulation_io.h"
+#include "io/accumulation_io.h"
 
 #include <cerrno>
 #include <charconv>
@@ -10,7 +10,8 @@
 #include <exception>
 #include <filesystem>
 
-#include "render/image_io.h"
+#include "io/atomic_file.h"
+#include "io/image_error.h"
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>
@@ -177,10 +178,10 @@ void write_accumulation(const std::string& path, const Accumulation& acc) {
       attr("scene", acc.id.scene);
       attr("scene_hash", acc.id.scene_hash);
       attr("settings", acc.id.settings);
-      attr("passes", std::to_string(acc.passes));
-      attr("nan_count", std::to_string(acc.nan_count));
-      attr("rays", std::to_string(acc.rays));
-      attr("seconds", text(acc.seconds));
+      attr("passes", std::to_string(acc.counters.passes));
+      attr("nan_count", std::to_string(acc.counters.nan_count));
+      attr("rays", std::to_string(acc.counters.rays));
+      attr("seconds", text(acc.counters.seconds));
       Imf::OutputFile file(tmp.c_str(), header);
       Imf::FrameBuffer fb;
       char* base = reinterpret_cast<char*>(const_cast<float*>(mean.rgb.data()));
@@ -253,10 +254,10 @@ Accumulation read(const std::string& path, bool with_sums) {
                               "\" is not a list of sorted ranges A:B");
     acc.id = {attribute(h, path, "scene"), attribute(h, path, "scene_hash"),
               attribute(h, path, "settings")};
-    acc.passes = count_attribute(h, path, "passes");
-    acc.nan_count = count_attribute(h, path, "nan_count");
-    acc.rays = count_attribute(h, path, "rays");
-    acc.seconds = seconds_attribute(h, path);
+    acc.counters.passes = count_attribute(h, path, "passes");
+    acc.counters.nan_count = count_attribute(h, path, "nan_count");
+    acc.counters.rays = count_attribute(h, path, "rays");
+    acc.counters.seconds = seconds_attribute(h, path);
     const Imath::Box2i dw = h.dataWindow();
     // The header's size is checked before the pixels are allocated: a 35 KB
     // file claiming 40000 x 40000 pixels asked for 51 GB. Renders are at

@@ -1,4 +1,4 @@
-#include "render/image_io.h"
+#include "io/image_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -17,6 +17,8 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #endif
+
+#include "io/atomic_file.h"
 
 namespace whisker {
 

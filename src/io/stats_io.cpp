@@ -1,10 +1,11 @@
-#include "render/stats_io.h"
+#include "io/stats_io.h"
 
 #include <type_traits>
 
 #include <nlohmann/json.hpp>
 
-#include "render/image_io.h"
+#include "io/atomic_file.h"
+#include "io/image_error.h"
 #include "scene/quote.h"
 #include "scene/settings_json.h"
 
@@ -12,23 +13,23 @@ namespace whisker {
 
 void write_stats_json(const std::string& path, const RenderStats& st) {
   const Snapshot& snap = *st.snap;
-  const double secs = snap.seconds;
+  const double secs = snap.counters.seconds;
   const double samples = double(snap.width) * snap.height * double(snap.spp);
   nlohmann::json j = {
       {"scene", cut_for_message(st.scene)},  // a name of megabytes is not copied whole
       {"width", snap.width},
       {"height", snap.height},
       {"spp", snap.spp},
-      {"passes", snap.passes},
+      {"passes", snap.counters.passes},
       {"generation", snap.generation},
       {"seconds", secs},
-      {"passes_per_s", secs > 0 ? double(snap.passes) / secs : 0.0},
+      {"passes_per_s", secs > 0 ? double(snap.counters.passes) / secs : 0.0},
       // A sample is one camera ray's estimate; with splitting it continues
       // as several paths, so this counts samples, not paths.
       {"samples_per_s", secs > 0 ? samples / secs : 0.0},
-      {"rays", snap.rays},
-      {"rays_per_s", secs > 0 ? double(snap.rays) / secs : 0.0},
-      {"nan_count", snap.nan_count},
+      {"rays", snap.counters.rays},
+      {"rays_per_s", secs > 0 ? double(snap.counters.rays) / secs : 0.0},
+      {"nan_count", snap.counters.nan_count},
       {"threads", st.threads},
       // A preview has no noise estimate; nlohmann writes NaN and Inf as null.
       // The figure is the worst of the scales below (Snapshot).

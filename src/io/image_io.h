@@ -1,22 +1,17 @@
 // Writing images: PNG (the report's mapping), PFM and EXR (linear radiance).
 // Every writer goes through a temporary file renamed into place after
-// checked writes (render/atomic_file.h), so an interrupted run or a full
+// checked writes (io/atomic_file.h), so an interrupted run or a full
 // disk never leaves a broken image under its final name.
 #pragma once
 
-#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "render/atomic_file.h"
+#include "io/image_error.h"
 #include "render/image.h"
 
 namespace whisker {
-
-struct ImageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // The report's display mapping: min(255, L^(1/2.2)) with L the radiance
 // (light intensity applied), docs/SCENES.md "Pixel value shown".

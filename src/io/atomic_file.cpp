@@ -1,4 +1,4 @@
-#include "render/atomic_file.h"
+#include "io/atomic_file.h"
 
 #include <algorithm>
 #include <atomic>
@@ -16,7 +16,7 @@
 #include <sys/random.h>
 #include <unistd.h>
 
-#include "render/image_io.h"
+#include "io/image_error.h"
 
 namespace whisker {
 
