@@ -5,43 +5,41 @@
 # reconfigures (the branch's ref file is a configure dependency).
 set(WHISKER_VERSION ${PROJECT_VERSION})
 find_package(Git QUIET)
+# whisker_git(OUT RC args...): git's output and exit status in the source tree.
+function(whisker_git out rc)
+  execute_process(COMMAND ${GIT_EXECUTABLE} ${ARGN}
+                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
+                  OUTPUT_VARIABLE _out OUTPUT_STRIP_TRAILING_WHITESPACE
+                  RESULT_VARIABLE _rc ERROR_QUIET)
+  set(${out} "${_out}" PARENT_SCOPE)
+  set(${rc} "${_rc}" PARENT_SCOPE)
+endfunction()
+# whisker_configure_depends(PATH): reconfigure when the file at PATH (relative
+# to the source tree) changes, if it exists.
+function(whisker_configure_depends path)
+  get_filename_component(_abs "${path}" ABSOLUTE BASE_DIR ${PROJECT_SOURCE_DIR})
+  if(EXISTS "${_abs}")
+    set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${_abs}")
+  endif()
+endfunction()
 if(GIT_FOUND AND EXISTS ${PROJECT_SOURCE_DIR}/.git)
-  execute_process(COMMAND ${GIT_EXECUTABLE} describe --tags --exact-match --match v*
-                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                  OUTPUT_VARIABLE _tag OUTPUT_STRIP_TRAILING_WHITESPACE
-                  RESULT_VARIABLE _tag_rc ERROR_QUIET)
-  execute_process(COMMAND ${GIT_EXECUTABLE} rev-list --count HEAD
-                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                  OUTPUT_VARIABLE _count OUTPUT_STRIP_TRAILING_WHITESPACE
-                  RESULT_VARIABLE _count_rc ERROR_QUIET)
-  execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --short=7 HEAD
-                  WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                  OUTPUT_VARIABLE _hash OUTPUT_STRIP_TRAILING_WHITESPACE
-                  RESULT_VARIABLE _hash_rc ERROR_QUIET)
+  whisker_git(_tag _tag_rc describe --tags --exact-match --match v*)
+  whisker_git(_count _count_rc rev-list --count HEAD)
+  whisker_git(_hash _hash_rc rev-parse --short=7 HEAD)
   if(NOT _tag_rc EQUAL 0 AND _count_rc EQUAL 0 AND _hash_rc EQUAL 0)
     set(WHISKER_VERSION "${PROJECT_VERSION}+git${_count}.${_hash}")
   endif()
   # Reconfigure when HEAD moves: the HEAD file, the branch's ref, packed refs.
   foreach(_ref HEAD packed-refs)
-    execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --git-path ${_ref}
-                    WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                    OUTPUT_VARIABLE _path OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+    whisker_git(_path _rc rev-parse --git-path ${_ref})
     if(_ref STREQUAL "HEAD" AND EXISTS "${_path}")
       file(READ "${_path}" _head)
       if(_head MATCHES "^ref: ([^\n]+)")
-        execute_process(COMMAND ${GIT_EXECUTABLE} rev-parse --git-path ${CMAKE_MATCH_1}
-                        WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
-                        OUTPUT_VARIABLE _branch OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-        get_filename_component(_branch "${_branch}" ABSOLUTE BASE_DIR ${PROJECT_SOURCE_DIR})
-        if(EXISTS "${_branch}")
-          set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${_branch}")
-        endif()
+        whisker_git(_branch _rc rev-parse --git-path ${CMAKE_MATCH_1})
+        whisker_configure_depends("${_branch}")
       endif()
     endif()
-    get_filename_component(_path "${_path}" ABSOLUTE BASE_DIR ${PROJECT_SOURCE_DIR})
-    if(EXISTS "${_path}")
-      set_property(DIRECTORY ${PROJECT_SOURCE_DIR} APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${_path}")
-    endif()
+    whisker_configure_depends("${_path}")
   endforeach()
 endif()
 message(STATUS "Whisker version ${WHISKER_VERSION}")
