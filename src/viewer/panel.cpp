@@ -308,7 +308,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
 
-  status_section(s, now);
+  s.bar_spp = status_section(s, now);
   controls(s, req);
   if (!s.eye_outside.empty()) {
     // The image is black or wrong from out there: say so, and the way back.
