@@ -1,8 +1,16 @@
-# Sourced by the viewer tests' drivers (viewer_*_test.sh), which run inside
-# xvfb-run: real key presses and mouse input through the X server (xdotool)
-# into a viewer window. Needs $bin (the whisker binary) and $dir (the test's
-# scratch folder, with a cwd/ subfolder the viewer runs in). Presses are held
-# for a moment so that a frame sees them even when the machine is busy.
+# The viewer tests' shared shell (viewer_*_test.sh). A test script sources
+# it and runs in two halves:
+#
+#   outside the X server:  viewer_test_setup BINARY tools...   ($bin, $dir, $tests)
+#                          write the actions into "$dir/drive.sh"
+#                          in_xvfb [SECONDS]                    (runs them in Xvfb)
+#                          check "what" 'shell condition'  ...  then: exit $fail
+#   inside it ($dir/drive.sh, with these helpers sourced): real key presses
+#   and mouse input through the X server (xdotool) into a viewer window.
+#
+# Presses are held for a moment so that a frame sees them even when the
+# machine is busy; waits poll the viewer's state (its title, its
+# --edit-log) with a timeout rather than sleeping a fixed time.
 
 press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
 click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
@@ -15,20 +23,68 @@ drag() {  # x0 y0 x1 y1
   done
   xdotool mouseup 1; sleep 0.5
 }
+wheel() {  # x y notches (> 0: in, towards the look-at point; < 0: out)
+  local button=4 n=$3
+  [ "$n" -lt 0 ] && button=5 n=$(( -n ))
+  xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2
+  for k in $(seq "$n"); do xdotool click --window "$wid" "$button"; sleep 0.2; done
+}
+rest() { xdotool mousemove --window "$wid" 880 790; sleep 0.3; }  # over an empty part of the panel
 
-# The viewer on the three balls, one render thread, extra options `args`;
-# waits for its window (sets $wid) and returns the viewer's pid in $pid.
-# Its stdout and stderr go to $dir/NAME.out and .err.
+# The viewer, one render thread, extra options `args` (the scene is
+# three-balls unless args name one); waits for its window (sets $wid) and
+# returns the viewer's pid in $pid. Its stdout and stderr go to
+# $dir/NAME.out and .err.
 open_viewer() {  # name args
-  (cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" --scene three-balls --threads 1 $2) \
+  local scene="--scene three-balls" k
+  case " $2 " in *" --scene "*) scene= ;; esac
+  (cd "$dir/cwd" && LIBGL_ALWAYS_SOFTWARE=1 exec "$bin" $scene --threads 1 $2) \
     >"$dir/$1.out" 2>"$dir/$1.err" &
   pid=$!
-  wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
-  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$1.err"; kill "$pid"; return 1; }
+  wid=
+  for k in $(seq 300); do  # a minute, unless the viewer gave up at once
+    wid=$(xdotool search --onlyvisible --name '^Whisker' 2>/dev/null | head -1)
+    [ -n "$wid" ] || ! kill -0 "$pid" 2>/dev/null && break
+    sleep 0.2
+  done
+  [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$1.err"; kill "$pid" 2>/dev/null; return 1; }
 }
+
+# As open_viewer, with its event log in $dir/NAME.log ($log); waits for the
+# first frame that shows a full pass of the settings it opened with.
+open_logged() {  # name args
+  log=$dir/$1.log
+  open_viewer "$1" "$2 --edit-log $log" || return
+  log_wait "f['own_gen'] == f['gen'] and f['own_spp'] >= 1 and f['shown_gen'] == f['gen']"
+}
+
+# Polls the event log until a Python condition on it holds (names in
+# tests/viewer_check.py), at most SECONDS (default 60); 1 on timeout.
+log_wait() {  # condition [seconds]
+  "$py" "$tests/viewer_check.py" wait "$log" "$1" "${2:-60}" 2>>"$dir/waits.err"
+}
+# Whether the condition holds now (no waiting, nothing reported).
+log_has() { "$py" "$tests/viewer_check.py" wait "$log" "$1" 0 2>/dev/null; }
+# Before an action that makes an edit: mark, act, then wait_image waits for
+# the first frame that shows the new settings (a quick pass, or a full one).
+mark() { marked=$(grep -c '^edit ' "$log"); messages=$(grep -c '^message ' "$log"); }
+wait_image() { log_wait "len(edits) > $marked and f['shown_gen'] == f['gen']" "${1:-60}"; }
+# After an action that sets the panel's message: waits for the new message.
+wait_message() { log_wait "len(messages) > $messages" "${1:-30}"; }
+# An X screenshot of the window into $dir/NAME.xwd.
+shot() { xwd -id "$wid" -silent >"$dir/$1.xwd"; }
+# The window is there, its process running and its title readable.
+alive() { kill -0 "$pid" 2>/dev/null && xdotool getwindowname "$wid" >/dev/null 2>&1; }
 
 # Waits until the window's title ends in "N spp" (at most a minute).
 wait_spp() { for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " $1 spp$" && return; sleep 0.5; done; }
+
+# Esc, then waits for the viewer to quit; its exit code goes into NAME.err.
+quit_viewer() {  # name
+  press Escape
+  wait "$pid"
+  echo "exit $?" >>"$dir/$1.err"
+}
 
 # One viewer session: open, run the actions, Esc, and record the exit code.
 session() {  # name args actions...
@@ -37,16 +93,15 @@ session() {  # name args actions...
   open_viewer "$name" "$args" || return
   sleep 2
   "$@"
-  press Escape
-  wait "$pid"
-  echo "exit $?" >>"$dir/$name.err"
+  quit_viewer "$name"
 }
 
 # The outer script's start (outside xvfb-run): $bin made absolute from
-# BINARY, exit 77 (ctest: skipped) when a tool is missing, a scratch folder
-# $dir with cwd/ in it, removed on exit.
+# BINARY, $tests this folder, exit 77 (ctest: skipped) when a tool is
+# missing, a scratch folder $dir with cwd/ in it, removed on exit.
 viewer_test_setup() {  # BINARY tools...
   bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+  tests=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
   shift
   for tool in "$@"; do
     command -v "$tool" >/dev/null 2>&1 || { echo "SKIP: $tool not installed"; exit 77; }
@@ -54,4 +109,31 @@ viewer_test_setup() {  # BINARY tools...
   dir=$(mktemp -d)
   trap 'rm -rf "$dir"' EXIT
   mkdir "$dir/cwd"
+  fail=0
+  # The interpreter itself: a version manager's python3 shim can take a
+  # second to start, and the waits start one every poll.
+  py=$(python3 -c 'import sys; print(sys.executable)' 2>/dev/null)
+  [ -x "$py" ] || py=python3
+}
+
+# Runs "$dir/drive.sh" in a fresh X server (1280x800) with these helpers,
+# for at most SECONDS (default 300).
+in_xvfb() {  # [seconds]
+  timeout "${1:-300}" xvfb-run -a -s "-screen 0 1280x800x24" \
+    env bin="$bin" dir="$dir" tests="$tests" py="$py" \
+    bash -c '. "$tests/viewer_drive.sh"; . "$dir/drive.sh"'
+  [ -s "$dir/waits.err" ] && { echo "--- waits that timed out"; cat "$dir/waits.err"; }
+  return 0
+}
+
+# One named check: prints ok or FAILED, and a failure sets $fail.
+check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
+
+# Fields of the viewer's closing line in NAME.err: generation, spp.
+generation() { sed -n 's/.*generation \([0-9]*\),.*/\1/p' "$dir/$1.err"; }
+closing_spp() { sed -n 's/.*generation [0-9]*, [0-9]* passes, \([0-9]*\) spp.*/\1/p' "$dir/$1.err"; }
+# The eye of the N-th camera the viewer printed (C) into NAME.out: "x y z",
+# or "none".
+eye() {  # name n
+  "$py" "$tests/viewer_check.py" cameras "$dir/$1.out" | sed -n "${2}p" | grep . || echo none
 }
