@@ -42,3 +42,17 @@ add_test(NAME ViewerInput.WheelStaysInTheRoomNoKeyPressLost
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_room_test.sh $<TARGET_FILE:whisker>)
 set_tests_properties(ViewerInput.WheelStaysInTheRoomNoKeyPressLost PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# In the A/B wipe, Save writes both halves as the window shows them and names
+# the folder.
+add_test(NAME ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_wipe_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# The pixel readout says "1 sample" / "N samples" and stays over the image;
+# the title and the panel say the same samples per pixel in every frame.
+add_test(NAME ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_readout_window_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
