@@ -222,9 +222,12 @@ struct Session {
   }
 
   // The samples per pixel of the current settings' own passes, as the
-  // panel's bar says them (0 until the first lands).
+  // panel's bar said them this frame (0 until the first lands). The panel
+  // is drawn before the frame's edits are carried out, so the title takes
+  // the bar's number rather than counting again after them: in an edit's
+  // frame it said 0 spp while the bar still showed the old render's 5.
   void update_title() {
-    const std::uint64_t spp = shown_spp(s);
+    const std::uint64_t spp = s.bar_spp;
     if (spp == title_spp) return;
     title_spp = spp;
     const std::string title = "Whisker - " + s.scene_label + " - " + std::to_string(spp) + " spp";
