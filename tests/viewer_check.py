@@ -8,7 +8,8 @@
       f (the last frame, {} before the first; its area is the image's
       rectangle x,y,w,h in window units), edits (the edit lines), messages
       (the panel's message texts), asks (the loads the panel asked about),
-      readouts (dicts with box [x, y, w, h] and lines).
+      outside (why the eye is out of the room; "" back in), readouts (dicts
+      with box [x, y, w, h] and lines).
   viewer_check.py sane SHOT.xwd X,Y,W,H
       exit 0 when the rectangle of an X screenshot (xwd) holds a plausible
       render: not black, many colours; prints its figures.
@@ -78,6 +79,7 @@ def log_names(entries):
         "edits": [f for w, f in entries if w == "edit"],
         "messages": [f.get("text", "") for w, f in entries if w == "message"],
         "asks": [f.get("load", "") for w, f in entries if w == "ask"],
+        "outside": [f.get("text", "") for w, f in entries if w == "outside"],
         "readouts": readouts,
     }
 

@@ -4,6 +4,8 @@
 //   edit t=T gen=G                the settings changed (T: the frame that made it)
 //   message t=T text=...          the panel's message line changed to this
 //   ask t=T load=NAME             the panel asks "Discard the edits?" before loading
+//   outside t=T text=WHY          the eye is outside the room or in an object
+//                                 (empty: back inside), as the panel says in red
 //   readout t=T box=X,Y,W,H text=LINE|LINE|...
 //                                 the pixel readout drawn: its box in window
 //                                 units and its lines
@@ -41,7 +43,7 @@ class EventLog {
  private:
   std::FILE* f_ = nullptr;
   std::uint64_t generation_ = 0;
-  std::string message_, pending_load_;
+  std::string message_, pending_load_, outside_;
 };
 
 }  // namespace whisker
