@@ -23,12 +23,6 @@ drag() {  # x0 y0 x1 y1
   done
   xdotool mouseup 1; sleep 0.5
 }
-wheel() {  # x y notches (> 0: in, towards the look-at point; < 0: out)
-  local button=4 n=$3
-  [ "$n" -lt 0 ] && button=5 n=$(( -n ))
-  xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2
-  for k in $(seq "$n"); do xdotool click --window "$wid" "$button"; sleep 0.2; done
-}
 rest() { xdotool mousemove --window "$wid" 880 790; sleep 0.3; }  # over an empty part of the panel
 
 # The viewer, one render thread, extra options `args` (the scene is
@@ -50,11 +44,15 @@ open_viewer() {  # name args
   [ -n "$wid" ] || { echo "no viewer window" >>"$dir/$1.err"; kill "$pid" 2>/dev/null; return 1; }
 }
 
-# As open_viewer, with its event log in $dir/NAME.log ($log); waits for the
-# first frame that shows a full pass of the settings it opened with.
+# As open_viewer, with its event log in $dir/NAME.log ($log) and the
+# window's place on the screen in $win_x, $win_y; waits for the first frame
+# that shows a full pass of the settings it opened with.
 open_logged() {  # name args
   log=$dir/$1.log
   open_viewer "$1" "$2 --edit-log $log" || return
+  local X Y WIDTH HEIGHT SCREEN
+  eval "$(xdotool getwindowgeometry --shell "$wid")"
+  win_x=$X win_y=$Y
   log_wait "f['own_gen'] == f['gen'] and f['own_spp'] >= 1 and f['shown_gen'] == f['gen']"
 }
 
@@ -71,6 +69,45 @@ mark() { marked=$(grep -c '^edit ' "$log"); messages=$(grep -c '^message ' "$log
 wait_image() { log_wait "len(edits) > $marked and f['shown_gen'] == f['gen']" "${1:-60}"; }
 # After an action that sets the panel's message: waits for the new message.
 wait_message() { log_wait "len(messages) > $messages" "${1:-30}"; }
+# Input for logged sessions, paced by the window itself: each step waits
+# until the window has drawn three frames after it (it draws three after
+# any input), so a frame has seen a key or button held, however busy the
+# machine, and no step waits longer than it must.
+after_frames() {  # command...
+  local n
+  n=$(grep -c '^frame ' "$log")
+  "$@"
+  log_wait "len(frames) >= $n + 3" 30
+}
+move_to() {  # x y (window units); nothing to wait for if the pointer is there
+  local X Y WINDOW SCREEN
+  eval "$(xdotool getmouselocation --shell)"
+  [ "$X" = "$(( $1 + win_x ))" ] && [ "$Y" = "$(( $2 + win_y ))" ] && return
+  after_frames xdotool mousemove --window "$wid" "$1" "$2"
+}
+tap() { move_to "$1" "$2"; after_frames xdotool mousedown 1; after_frames xdotool mouseup 1; }
+hold_key() {  # key [modifier]: down in one frame, up in a later one
+  [ -n "${2:-}" ] && xdotool keydown --window "$wid" "$2"
+  after_frames xdotool keydown --window "$wid" "$1"
+  after_frames xdotool keyup --window "$wid" "$1"
+  [ -n "${2:-}" ] && xdotool keyup --window "$wid" "$2"
+  return 0
+}
+type_in() { after_frames xdotool type --delay 40 -- "$1"; }
+slide() {  # x0 y0 x1 y1: a left drag in three steps
+  local k
+  move_to "$1" "$2"; after_frames xdotool mousedown 1
+  for k in 1 2 3; do
+    after_frames xdotool mousemove --window "$wid" $(( $1 + ($3 - $1) * k / 3 )) $(( $2 + ($4 - $2) * k / 3 ))
+  done
+  after_frames xdotool mouseup 1
+}
+roll() {  # x y notches: the wheel over (x, y), > 0 in (towards the look-at point), < 0 out
+  local button=4 n=$3
+  [ "$n" -lt 0 ] && button=5 n=$(( -n ))
+  move_to "$1" "$2"
+  after_frames xdotool click --repeat "$n" --delay 60 "$button"
+}
 # An X screenshot of the window into $dir/NAME.xwd.
 shot() { xwd -id "$wid" -silent >"$dir/$1.xwd"; }
 # The window is there, its process running and its title readable.
@@ -96,7 +133,7 @@ session() {  # name args actions...
   quit_viewer "$name"
 }
 
-# The outer script's start (outside xvfb-run): $bin made absolute from
+# The outer script's start (outside the X server): $bin made absolute from
 # BINARY, $tests this folder, exit 77 (ctest: skipped) when a tool is
 # missing, a scratch folder $dir with cwd/ in it, removed on exit.
 viewer_test_setup() {  # BINARY tools...
@@ -117,11 +154,25 @@ viewer_test_setup() {  # BINARY tools...
 }
 
 # Runs "$dir/drive.sh" in a fresh X server (1280x800) with these helpers,
-# for at most SECONDS (default 300).
+# for at most SECONDS (default 300). The server picks a free display number
+# itself (-displayfd), so tests started at once, here or from other
+# checkouts, never race for one as xvfb-run -a does.
 in_xvfb() {  # [seconds]
-  timeout "${1:-300}" xvfb-run -a -s "-screen 0 1280x800x24" \
-    env bin="$bin" dir="$dir" tests="$tests" py="$py" \
+  local xpid display= k
+  Xvfb -displayfd 1 -screen 0 1280x800x24 -nolisten tcp >"$dir/xvfb.display" 2>"$dir/xvfb.err" &
+  xpid=$!
+  for k in $(seq 300); do
+    display=$(head -1 "$dir/xvfb.display")
+    [ -n "$display" ] || ! kill -0 "$xpid" 2>/dev/null && break
+    sleep 0.1
+  done
+  if [ -z "$display" ]; then
+    echo "Xvfb did not start:"; cat "$dir/xvfb.err"; kill "$xpid" 2>/dev/null; fail=1; return 1
+  fi
+  DISPLAY=:$display timeout "${1:-300}" env bin="$bin" dir="$dir" tests="$tests" py="$py" \
     bash -c '. "$tests/viewer_drive.sh"; . "$dir/drive.sh"'
+  kill "$xpid" 2>/dev/null
+  wait "$xpid" 2>/dev/null
   [ -s "$dir/waits.err" ] && { echo "--- waits that timed out"; cat "$dir/waits.err"; }
   return 0
 }

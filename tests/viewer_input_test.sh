@@ -5,11 +5,11 @@
 #      where it was (ImGui's WantCaptureMouse);
 #   B. R restarts, a drag on the image orbits the camera, Esc quits (exit 0).
 # The viewer's closing line gives the generation (1 = never restarted); C
-# prints the camera. Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+# prints the camera. Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_input_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool
+viewer_test_setup "$1" Xvfb xdotool
 
 cat >"$dir/drive.sh" <<'EOF'
 # The window is 912x800: the image left (512 wide), the panel right; at

@@ -14,11 +14,11 @@
 #      image all the while (frames drawn while a pass is half done): in
 #      every frame the title's spp is the panel's; at the end the window's
 #      title (from the X server) says 6 spp, as the panel's last frame.
-# Exit 77 (ctest: skipped) without xvfb-run, xdotool or xwd.
+# Exit 77 (ctest: skipped) without Xvfb, xdotool or xwd.
 #   viewer_readout_window_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool xwd python3
+viewer_test_setup "$1" Xvfb xdotool xwd python3
 
 cat >"$dir/cwd/wall.json" <<'INNER'
 {"name": "wall",
@@ -108,6 +108,7 @@ INNER
 
 r() { "$py" "$dir/readout.py" "$tests" "$dir" "$@"; }
 for s in O M T; do echo "--- $s"; cat "$dir/$s.err"; done; cat "$dir/T.title"
+check "every wait for the window was met in time" '[ ! -s "$dir/waits.err" ]'
 check "O: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/O.err"'
 check "O: at 1 spp the readout says \"1 sample\"" 'r O says "1 sample"'
 check "O: at the right edge, the bottom right corner and the left edge the box stays over the image" 'r O inside'

@@ -7,11 +7,11 @@
 #   K. C pressed 12 times 5 ms apart (each press released at once, so
 #      several fall between two frames): 12 more cameras printed, one a
 #      frame (a press is never merged with another or lost).
-# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+# Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_room_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool python3
+viewer_test_setup "$1" Xvfb xdotool python3
 
 cat >"$dir/drive.sh" <<'INNER'
 W() { xdotool mousemove --window "$wid" 256 300; sleep 0.3

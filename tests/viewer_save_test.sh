@@ -4,11 +4,11 @@
 # its slider, then S is pressed twice. The first PNG must be the headless
 # render (the report's mapping) darkened by 2 stops, (L/4)^(1/2.2), to one
 # level; the second must get a free name (-2) and the panel's message says so.
-# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+# Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_save_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool python3
+viewer_test_setup "$1" Xvfb xdotool python3
 
 cat >"$dir/drive.sh" <<'INNER'
 open_viewer E "--frames 2" || exit 0

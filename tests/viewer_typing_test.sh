@@ -8,11 +8,11 @@
 #      passes are done; typing 15 into "target spp" applies once, on Enter
 #      (not 1 and then 15), and raising the target carries the accumulation
 #      on in the same generation up to 15 samples per pixel.
-# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+# Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_typing_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool
+viewer_test_setup "$1" Xvfb xdotool
 
 cat >"$dir/drive.sh" <<'INNER'
 . "$dir/layout.sh"

@@ -10,25 +10,25 @@
 # one level (the wipe line and its labels, drawn over the screen only, left
 # out); the panel's message says "as shown: held left, live right" and ends
 # with the folder it saved into, by its full path.
-# Exit 77 (ctest: skipped) without xvfb-run, xdotool or xwd.
+# Exit 77 (ctest: skipped) without Xvfb, xdotool or xwd.
 #   viewer_wipe_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool xwd python3
+viewer_test_setup "$1" Xvfb xdotool xwd python3
 
 cat >"$dir/drive.sh" <<'INNER'
 open_logged W "--aa on --target-spp 2" || exit 0
 done2() { log_wait "len(edits) > $marked and f['own_gen'] == f['gen'] == f['shown_gen'] and f['own_spp'] >= 2"; }
 marked=0 && done2
-rest
-mark; press s; wait_message
+move_to 880 790  # the pointer on an empty part of the panel
+mark; hold_key s; wait_message
 # The 912x800 window: the panel's Compare header, then (opened) its Hold
 # button; the sections below move down by the Compare lines.
-click 640 313; click 576 336
-mark; click 714 589; wait_image; done2  # Fresnel on
-rest; sleep 0.5
+tap 640 313; tap 576 336
+mark; tap 714 589; wait_image; done2  # Fresnel on
+move_to 880 790
 shot W
-mark; press s; wait_message
+mark; hold_key s; wait_message
 quit_viewer W
 INNER
 
@@ -74,6 +74,7 @@ sys.exit(0 if big == 0 and off <= n * 1e-4 else 1)
 INNER
 
 echo "--- W"; cat "$dir/W.out" "$dir/W.err"; grep -v '^frame\|^readout' "$dir/W.log"; ls "$dir/cwd"
+check "every wait for the window was met in time" '[ ! -s "$dir/waits.err" ]'
 check "W: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/W.err"'
 check "W: both saves were written" '[ -f "$dir/cwd/three-balls-2spp.png" ] && [ -f "$dir/cwd/three-balls-2spp-2.png" ]'
 check "W: left of the wipe line the save is the held image" '"$py" "$dir/compare.py" "$tests" "$dir" left'
