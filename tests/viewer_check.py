@@ -95,7 +95,7 @@ def wait(log, condition, seconds=60.0):
             pass  # the fields it reads are not there yet
         if time.monotonic() > end:
             return False
-        time.sleep(0.1)
+        time.sleep(0.05)
 
 
 def read_png(path):

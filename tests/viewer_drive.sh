@@ -74,10 +74,15 @@ wait_message() { log_wait "len(messages) > $messages" "${1:-30}"; }
 # any input), so a frame has seen a key or button held, however busy the
 # machine, and no step waits longer than it must.
 after_frames() {  # command...
-  local n
+  local n k
   n=$(grep -c '^frame ' "$log")
   "$@"
-  log_wait "len(frames) >= $n + 3" 30
+  for k in $(seq 1000); do  # 30 s
+    [ "$(grep -c '^frame ' "$log")" -ge $(( n + 3 )) ] && return 0
+    sleep 0.03
+  done
+  echo "timed out after 30 s waiting for 3 frames after: $*" >>"$dir/waits.err"
+  return 1
 }
 move_to() {  # x y (window units); nothing to wait for if the pointer is there
   local X Y WINDOW SCREEN
@@ -113,6 +118,11 @@ shot() { xwd -id "$wid" -silent >"$dir/$1.xwd"; }
 # The window is there, its process running and its title readable.
 alive() { kill -0 "$pid" 2>/dev/null && xdotool getwindowname "$wid" >/dev/null 2>&1; }
 
+# Waits until the window's title says a pass is in (at most a minute).
+wait_first_pass() {
+  local k
+  for k in $(seq 600); do xdotool getwindowname "$wid" | grep -q " [1-9][0-9]* spp$" && return; sleep 0.1; done
+}
 # Waits until the window's title ends in "N spp" (at most a minute).
 wait_spp() { for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " $1 spp$" && return; sleep 0.5; done; }
 
@@ -128,7 +138,8 @@ session() {  # name args actions...
   local name=$1 args=$2
   shift 2
   open_viewer "$name" "$args" || return
-  sleep 2
+  wait_first_pass
+  sleep 0.5
   "$@"
   quit_viewer "$name"
 }
