@@ -3,7 +3,8 @@
 
   viewer_check.py wait LOG CONDITION [SECONDS]
       polls the viewer's --edit-log (viewer/event_log.h) until CONDITION, a
-      Python expression, holds; exit 1 with the log's last lines on timeout.
+      Python expression, holds; exit 1 with the log's last lines on timeout
+      or, with VIEWER_PID set, once that process is gone.
       Names in it: frames (dicts of the frame lines, numbers as numbers),
       f (the last frame, {} before the first; its area is the image's
       rectangle x,y,w,h in window units), edits (the edit lines), messages
@@ -84,7 +85,18 @@ def log_names(entries):
     }
 
 
-def wait(log, condition, seconds=60.0):
+def running(pid):
+    """The process is there and not a zombie (exited, waiting to be reaped)."""
+    try:
+        stat = open(f"/proc/{pid}/stat").read()
+    except OSError:
+        return False
+    return stat[stat.rindex(")") + 2:][:1] != "Z"
+
+
+def wait(log, condition, seconds=60.0, pid=None):
+    """True once the condition holds; False after `seconds`, or once the
+    process `pid` (the viewer) is gone."""
     end = time.monotonic() + seconds
     while True:
         names = log_names(read_log(log))
@@ -93,7 +105,7 @@ def wait(log, condition, seconds=60.0):
                 return True
         except (KeyError, IndexError, TypeError):
             pass  # the fields it reads are not there yet
-        if time.monotonic() > end:
+        if time.monotonic() > end or (pid and not running(pid)):
             return False
         time.sleep(0.05)
 
@@ -198,7 +210,7 @@ def cameras(path):
 def main(argv):
     if argv[1] == "wait":
         seconds = float(argv[4]) if len(argv) > 4 else 60.0
-        if wait(argv[2], argv[3], seconds):
+        if wait(argv[2], argv[3], seconds, os.environ.get("VIEWER_PID")):
             return 0
         tail = open(argv[2]).read().splitlines()[-4:] if os.path.exists(argv[2]) else ["(no log)"]
         print(f"timed out after {seconds:.0f} s waiting for: {argv[3]}", file=sys.stderr)

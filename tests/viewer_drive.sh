@@ -57,12 +57,13 @@ open_logged() {  # name args
 }
 
 # Polls the event log until a Python condition on it holds (names in
-# tests/viewer_check.py), at most SECONDS (default 60); 1 on timeout.
+# tests/viewer_check.py), at most SECONDS (default 60); 1 on timeout or when
+# the viewer is gone.
 log_wait() {  # condition [seconds]
-  "$py" "$tests/viewer_check.py" wait "$log" "$1" "${2:-60}" 2>>"$dir/waits.err"
+  VIEWER_PID=$pid "$py" "$tests/viewer_check.py" wait "$log" "$1" "${2:-60}" 2>>"$dir/waits.err"
 }
 # Whether the condition holds now (no waiting, nothing reported).
-log_has() { "$py" "$tests/viewer_check.py" wait "$log" "$1" 0 2>/dev/null; }
+log_has() { VIEWER_PID=$pid "$py" "$tests/viewer_check.py" wait "$log" "$1" 0 2>/dev/null; }
 # Before an action that makes an edit: mark, act, then wait_image waits for
 # the first frame that shows the new settings (a quick pass, or a full one).
 mark() { marked=$(grep -c '^edit ' "$log"); messages=$(grep -c '^message ' "$log"); }
@@ -77,8 +78,9 @@ after_frames() {  # command...
   local n k
   n=$(grep -c '^frame ' "$log")
   "$@"
-  for k in $(seq 1000); do  # 30 s
+  for k in $(seq 1000); do  # 30 s, unless the viewer is gone
     [ "$(grep -c '^frame ' "$log")" -ge $(( n + 3 )) ] && return 0
+    running || break
     sleep 0.03
   done
   echo "timed out after 30 s waiting for 3 frames after: $*" >>"$dir/waits.err"
@@ -115,8 +117,10 @@ roll() {  # x y notches: the wheel over (x, y), > 0 in (towards the look-at poin
 }
 # An X screenshot of the window into $dir/NAME.xwd.
 shot() { xwd -id "$wid" -silent >"$dir/$1.xwd"; }
+# The viewer's process is running (not gone, not a zombie waiting for wait).
+running() { [ -e "/proc/$pid" ] && ! grep -q '^[0-9]* ([^)]*) Z' "/proc/$pid/stat" 2>/dev/null; }
 # The window is there, its process running and its title readable.
-alive() { kill -0 "$pid" 2>/dev/null && xdotool getwindowname "$wid" >/dev/null 2>&1; }
+alive() { running && xdotool getwindowname "$wid" >/dev/null 2>&1; }
 
 # Waits until the window's title says a pass is in (at most a minute).
 wait_first_pass() {
