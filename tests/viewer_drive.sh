@@ -8,9 +8,12 @@
 #   inside it ($dir/drive.sh, with these helpers sourced): real key presses
 #   and mouse input through the X server (xdotool) into a viewer window.
 #
-# Presses are held for a moment so that a frame sees them even when the
-# machine is busy; waits poll the viewer's state (its title, its
-# --edit-log) with a timeout rather than sleeping a fixed time.
+# Two kinds of input: press, click, combo, typed and drag hold keys and
+# buttons for fixed moments, long enough for a frame to see them on a busy
+# machine; in a session opened with open_logged, tap, slide, roll, hold_key
+# and type_in are paced by the window's own frames from its --edit-log
+# (after_frames), and waits poll the viewer's state (its title, its log)
+# with a timeout rather than sleeping a fixed time.
 
 press() { xdotool keydown --window "$wid" "$1"; sleep 0.3; xdotool keyup --window "$wid" "$1" 2>/dev/null; sleep 0.5; }
 click() { xdotool mousemove --window "$wid" "$1" "$2"; sleep 0.2; xdotool mousedown 1; sleep 0.3; xdotool mouseup 1; sleep 0.5; }
@@ -23,7 +26,6 @@ drag() {  # x0 y0 x1 y1
   done
   xdotool mouseup 1; sleep 0.5
 }
-rest() { xdotool mousemove --window "$wid" 880 790; sleep 0.3; }  # over an empty part of the panel
 
 # The viewer, one render thread, extra options `args` (the scene is
 # three-balls unless args name one); waits for its window (sets $wid) and
