@@ -39,7 +39,9 @@ open_viewer() {  # name args
   pid=$!
   wid=
   for k in $(seq 300); do  # a minute, unless the viewer gave up at once
-    wid=$(xdotool search --onlyvisible --name '^Whisker' 2>/dev/null | head -1)
+    # This viewer's own window (GLFW sets _NET_WM_PID): never one of an
+    # earlier session that the server has not taken down yet.
+    wid=$(xdotool search --onlyvisible --pid "$pid" --name '^Whisker' 2>/dev/null | head -1)
     [ -n "$wid" ] || ! kill -0 "$pid" 2>/dev/null && break
     sleep 0.2
   done
@@ -175,16 +177,21 @@ viewer_test_setup() {  # BINARY tools...
 # itself (-displayfd), so tests started at once, here or from other
 # checkouts, never race for one as xvfb-run -a does.
 in_xvfb() {  # [seconds]
-  local xpid display= k
-  Xvfb -displayfd 1 -screen 0 1280x800x24 -nolisten tcp >"$dir/xvfb.display" 2>"$dir/xvfb.err" &
-  xpid=$!
-  for k in $(seq 300); do
-    display=$(head -1 "$dir/xvfb.display")
-    [ -n "$display" ] || ! kill -0 "$xpid" 2>/dev/null && break
-    sleep 0.1
+  local xpid display= k try
+  for try in 1 2 3; do  # a server that loses a display number to another starting at once exits: again
+    Xvfb -displayfd 1 -screen 0 1280x800x24 -nolisten tcp >"$dir/xvfb.display" 2>>"$dir/xvfb.err" &
+    xpid=$!
+    for k in $(seq 300); do
+      display=$(head -1 "$dir/xvfb.display")
+      [ -n "$display" ] || ! kill -0 "$xpid" 2>/dev/null && break
+      sleep 0.1
+    done
+    [ -n "$display" ] && break
+    kill "$xpid" 2>/dev/null
+    wait "$xpid" 2>/dev/null
   done
   if [ -z "$display" ]; then
-    echo "Xvfb did not start:"; cat "$dir/xvfb.err"; kill "$xpid" 2>/dev/null; fail=1; return 1
+    echo "Xvfb did not start:"; cat "$dir/xvfb.err"; fail=1; return 1
   fi
   DISPLAY=:$display timeout "${1:-300}" env bin="$bin" dir="$dir" tests="$tests" py="$py" \
     bash -c '. "$tests/viewer_drive.sh"; . "$dir/drive.sh"'
