@@ -33,6 +33,7 @@ edit_t, gen, first_img, first_pass, noise5 = None, None, None, None, None
 edits = 0
 for line in open(sys.argv[1]):
     parts = line.split()
+    if parts[0] not in ("edit", "frame"): continue  # message, ask, readout lines
     kv = dict(p.split("=", 1) for p in parts[1:])
     if parts[0] == "edit":
         edits += 1
@@ -89,7 +90,9 @@ if command -v xdotool >/dev/null; then
 import sys, statistics
 edits, frames = {}, []
 for line in open(sys.argv[1]):
-    parts = line.split(); kv = dict(p.split("=", 1) for p in parts[1:])
+    parts = line.split()
+    if parts[0] not in ("edit", "frame"): continue  # message, ask, readout lines
+    kv = dict(p.split("=", 1) for p in parts[1:])
     if parts[0] == "edit": edits[kv["gen"]] = float(kv["t"])
     else: frames.append((float(kv["t"]), kv["shown_gen"]))
 gens = sorted(edits, key=lambda g: edits[g])[1:]  # the drag's edits (not the first load)

@@ -11,6 +11,7 @@ WHISKER_PACKAGES=(
   libglm-dev nlohmann-json3-dev libcli11-dev libtinyobjloader-dev libstb-dev libopenexr-dev
   libgtest-dev libbenchmark-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth xdotool
+  x11-apps  # xwd: the viewer tests' screenshots of the real window
   dpkg-dev desktop-file-utils man-db  # the package (dpkg-shlibdeps) and its checks
 )
 

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <unistd.h>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render/progressive.h"
@@ -96,6 +98,53 @@ TEST(PixelReadout, MeanAndStandardErrorOfThePixel) {
   s.spp = 1;
   EXPECT_LT(read_pixel(s, 1, 0).std_error, 0.0);  // needs 2 samples
   EXPECT_EQ(read_pixel(s, 2, 0).samples, 0u);     // outside
+}
+
+// The readout's last line counts the samples behind the pixel: "1 sample"
+// at one sample per pixel, "N samples" otherwise; the first names the pixel
+// and, on the held side of a comparison, the held image.
+TEST(PixelReadout, LinesSaySampleOrSamples) {
+  Snapshot s;
+  s.width = 2;
+  s.height = 1;
+  s.spp = 1;
+  s.sum = {0, 0, 0, 4, 4, 4};
+  s.sum_sq = {0, 16};
+  std::vector<std::string> lines = readout_lines(read_pixel(s, 1, 0), 1, 0, false);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "pixel (1, 0)");
+  EXPECT_EQ(lines[1], "radiance  4  4  4");
+  EXPECT_EQ(lines[2], "luminance 4  (error needs 2 samples)");
+  EXPECT_EQ(lines[3], "1 sample (std. error of the pixel mean)");
+  for (const std::uint64_t n : {2ull, 16ull, 1024ull}) {
+    s.spp = n;
+    lines = readout_lines(read_pixel(s, 1, 0), 1, 0, true);
+    EXPECT_EQ(lines[0], "pixel (1, 0)  [held image]");
+    EXPECT_EQ(lines[3], std::to_string(n) + " samples (std. error of the pixel mean)");
+  }
+  s.spp = 0;  // nothing rendered yet
+  EXPECT_EQ(readout_lines(read_pixel(s, 1, 0), 1, 0, false)[3],
+            "0 samples (std. error of the pixel mean)");
+}
+
+// The readout's box goes below right of the pointer, and flips left (up)
+// where it would leave the image on the right (bottom): never over the
+// panel right of the image, never below the window.
+TEST(PixelReadout, BoxStaysOverTheImage) {
+  const float ax = 0, ay = 144, aw = 512, ah = 512, w = 330, h = 84;
+  const auto inside = [&](const BoxPlace& p) {
+    return p.x >= ax && p.y >= ay && p.x + w <= ax + aw && p.y + h <= ay + ah;
+  };
+  const BoxPlace middle = place_readout(100, 300, w, h, ax, ay, aw, ah);
+  EXPECT_FLOAT_EQ(middle.x, 116);  // below right of the pointer
+  EXPECT_FLOAT_EQ(middle.y, 308);
+  for (const float mx : {0.0f, 100.0f, 255.0f, 400.0f, 511.0f})
+    for (const float my : {144.0f, 300.0f, 600.0f, 655.0f}) {
+      const BoxPlace p = place_readout(mx, my, w, h, ax, ay, aw, ah);
+      EXPECT_TRUE(inside(p)) << "pointer " << mx << ", " << my << ": box at " << p.x << ", " << p.y;
+      // Never under the pointer: the box is beside it.
+      EXPECT_FALSE(mx >= p.x && mx < p.x + w && my >= p.y && my < p.y + h) << mx << ", " << my;
+    }
 }
 
 TEST(ToneCurve, AcesFitValues) {

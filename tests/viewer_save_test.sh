@@ -4,16 +4,13 @@
 # its slider, then S is pressed twice. The first PNG must be the headless
 # render (the report's mapping) darkened by 2 stops, (L/4)^(1/2.2), to one
 # level; the second must get a free name (-2) and the panel's message says so.
-# Exit 77 (ctest: skipped) without xvfb-run or xdotool.
+# Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_save_test.sh path/to/whisker
 set -u
 . "$(dirname "$0")/viewer_drive.sh"
-viewer_test_setup "$1" xvfb-run xdotool python3
+viewer_test_setup "$1" Xvfb xdotool python3
 
 cat >"$dir/drive.sh" <<'INNER'
-#!/usr/bin/env bash
-bin=$1 dir=$2
-. "$3"
 open_viewer E "--frames 2" || exit 0
 wait_spp 2  # the title carries the samples per pixel: both passes done
 sleep 1
@@ -26,47 +23,17 @@ xdotool keydown ctrl; sleep 0.2; xdotool key a; sleep 0.3; xdotool keyup ctrl; x
 xdotool mousemove --window "$wid" 900 790; sleep 0.5
 press s
 press s
-press Escape
-wait $pid
-echo "exit $?" >>"$dir/E.err"
+quit_viewer E
 INNER
 
-timeout 300 xvfb-run -a -s "-screen 0 1280x800x24" bash "$dir/drive.sh" "$bin" "$dir" "$(dirname "$0")/viewer_drive.sh"
+in_xvfb
 "$bin" --headless --scene three-balls --frames 2 --threads 1 --quiet --out "$dir/ref.png" >/dev/null 2>&1
 
 cat >"$dir/compare.py" <<'INNER'
-# Reads 8-bit RGB PNGs (no interlace) with zlib alone and compares the saved
-# image with the reference darkened by 2 stops.
-import struct, sys, zlib
-
-def read_png(path):
-    data = open(path, "rb").read()
-    pos, idat, w, h = 8, b"", 0, 0
-    while pos < len(data):
-        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        if kind == b"IHDR":
-            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
-            assert depth == 8 and colour == 2, "8-bit RGB expected"
-        elif kind == b"IDAT":
-            idat += body
-        pos += 12 + n
-    raw, stride, rows, prev = zlib.decompress(idat), w * 3, [], bytearray(w * 3)
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - 3] if i >= 3 else 0
-            b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
-            if f == 1: line[i] = (line[i] + a) & 255
-            elif f == 2: line[i] = (line[i] + b) & 255
-            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(line)
-        prev = line
-    return w, h, b"".join(rows)
+# Compares the saved image with the reference darkened by 2 stops.
+import sys
+sys.path.insert(0, sys.argv[3])
+from viewer_check import read_png
 
 w, h, saved = read_png(sys.argv[1])
 rw, rh, ref = read_png(sys.argv[2])
@@ -79,11 +46,9 @@ print(f"{bad} of {len(saved)} values off; {bright} non-zero")
 sys.exit(0 if bad == 0 and bright > len(saved) // 4 else 1)
 INNER
 
-fail=0
-check() { if eval "$2"; then echo "ok: $1"; else echo "FAILED: $1"; fail=1; fi; }
 echo "--- E"; cat "$dir/E.out" "$dir/E.err"; ls "$dir/cwd"
 check "E: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/E.err"'
-check "E: the first save is the image at -2 stops" 'python3 "$dir/compare.py" "$dir/cwd/three-balls-2spp.png" "$dir/ref.png"'
+check "E: the first save is the image at -2 stops" '"$py" "$dir/compare.py" "$dir/cwd/three-balls-2spp.png" "$dir/ref.png" "$tests"'
 check "E: the second save took a free name and said so" \
   '[ -f "$dir/cwd/three-balls-2spp-2.png" ] && grep -q "three-balls-2spp was taken, so the name is three-balls-2spp-2" "$dir/E.out"'
 exit $fail

@@ -45,3 +45,31 @@ add_test(NAME ViewerInput.WheelStaysInTheRoomNoKeyPressLost
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_room_test.sh $<TARGET_FILE:whisker>)
 set_tests_properties(ViewerInput.WheelStaysInTheRoomNoKeyPressLost PROPERTIES
   SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# In the A/B wipe, Save writes both halves as the window shows them and names
+# the folder.
+add_test(NAME ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_wipe_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# The pixel readout says "1 sample" / "N samples" and stays over the image;
+# the title and the panel say the same samples per pixel in every frame.
+add_test(NAME ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_readout_window_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# After Save scene nothing is left to discard: loading asks nothing; after a
+# further edit it asks.
+add_test(NAME ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEditAsks
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_scene_save_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEditAsks PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+
+# A new user's walk on the cat: orbit, wheel, light, glass, Fresnel,
+# indirect, depth, undo, redo, save, Esc; a sane image after every step.
+add_test(NAME ViewerInput.NewUserWalkOnTheCatStaysSane
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_walk_test.sh $<TARGET_FILE:whisker>)
+set_tests_properties(ViewerInput.NewUserWalkOnTheCatStaysSane PROPERTIES
+  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)

@@ -77,8 +77,9 @@ void wipe_line(const ViewerState& s, const ImageArea& a) {
   dl->AddText(ImVec2(x + 4 + pad.x, a.y + 4 + pad.y), IM_COL32(255, 255, 255, 255), right);
 }
 
-// The pixel under the mouse: radiance, samples, standard error.
-void pixel_readout(const ViewerState& s, const ImageArea& a) {
+// The pixel under the mouse: radiance, samples, standard error. Fills
+// `shown` with the box and lines drawn.
+void pixel_readout(const ViewerState& s, const ImageArea& a, ReadoutShown& shown) {
   const ImGuiIO& io = ImGui::GetIO();
   const ImVec2 m = io.MousePos;
   if (io.WantCaptureMouse || ImGui::IsAnyMouseDown() || a.w <= 0 || a.h <= 0) return;
@@ -90,33 +91,32 @@ void pixel_readout(const ViewerState& s, const ImageArea& a) {
   const Snapshot& sn = held ? s.held : s.shown.image.spp > 0 ? s.shown.image : s.snap;
   const int x = std::min(sn.width - 1, int(u * sn.width));
   const int y = std::min(sn.height - 1, int((m.y - a.y) / a.h * sn.height));
-  const PixelReadout r = read_pixel(sn, x, y);
-  // Over the image, never over the panel: left of the mouse near the right edge.
+  const std::vector<std::string> lines = readout_lines(read_pixel(sn, x, y), x, y, held);
+  // The box as these lines make it (the longest line, not a guess: "1024
+  // samples ..." is wider than a luminance line), kept over the image,
+  // never over the panel.
   const ImGuiStyle& st = ImGui::GetStyle();
-  const float w = ImGui::CalcTextSize("luminance 1.234e+05 +- 1.23e+03 (12.3 %)").x + 2.0f * st.WindowPadding.x;
-  const float h = ImGui::GetTextLineHeightWithSpacing() * 5.0f + 2.0f * st.WindowPadding.y;
-  float px = m.x + 16.0f, py = m.y + 8.0f;
-  if (px + w > a.x + a.w) px = std::max(a.x, m.x - 8.0f - w);
-  if (py + h > a.y + a.h) py = std::max(a.y, m.y - 8.0f - h);
-  ImGui::SetNextWindowPos(ImVec2(px, py));
+  float text_w = 0.0f;
+  for (const std::string& line : lines) text_w = std::max(text_w, ImGui::CalcTextSize(line.c_str()).x);
+  const float w = text_w + 2.0f * (st.WindowPadding.x + st.PopupBorderSize);
+  const float h = ImGui::GetTextLineHeightWithSpacing() * float(lines.size()) - st.ItemSpacing.y +
+                  2.0f * (st.WindowPadding.y + st.PopupBorderSize);
+  const BoxPlace at = place_readout(m.x, m.y, w, h, a.x, a.y, a.w, a.h);
+  ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
   ImGui::BeginTooltip();
-  ImGui::Text("pixel (%d, %d)%s", x, y, held ? "  [held image]" : "");
-  ImGui::Text("radiance  %.4g  %.4g  %.4g", r.rgb[0], r.rgb[1], r.rgb[2]);
-  if (r.std_error >= 0.0 && r.luminance > 0.0)
-    ImGui::Text("luminance %.4g +- %.3g (%.3g %%)", r.luminance, r.std_error,
-                100.0 * r.std_error / r.luminance);
-  else if (r.std_error >= 0.0)
-    ImGui::Text("luminance %.4g +- %.3g", r.luminance, r.std_error);
-  else
-    ImGui::Text("luminance %.4g  (error needs 2 samples)", r.luminance);
-  ImGui::Text("%llu sample%s (std. error of the pixel mean)", (unsigned long long)r.samples,
-              r.samples == 1 ? "" : "s");
+  for (const std::string& line : lines) ImGui::TextUnformatted(line.c_str());
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   ImGui::EndTooltip();
+  shown = {true, pos.x, pos.y, size.x, size.y, lines};
 }
 
 }  // namespace
 
-void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool readout) {
+void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool readout,
+                         ReadoutShown* shown) {
+  ReadoutShown none;
+  ReadoutShown& out = shown ? *shown : none;
+  out = ReadoutShown{};
   if (area.w <= 0 || area.h <= 0) return;
   if (s.display.mode == kViewNoise) noise_legend(area);
   if (s.display.mode >= kViewNormals) {
@@ -124,7 +124,7 @@ void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool reado
     return;  // the readout and the wipe are about the render
   }
   if (s.compare == kCompareWipe && s.held.spp > 0) wipe_line(s, area);
-  if (readout) pixel_readout(s, area);
+  if (readout) pixel_readout(s, area, out);
 }
 
 }  // namespace whisker

@@ -213,9 +213,14 @@ static void glass_toggle(ViewerState& s) {
     tip("Make the scene's meshes (the cat) solid glass, refractive index 1.5, or give "
         "them back their material. With glass, Fresnel matters; the bundled "
         "glass-cat scene starts this way.");
-    ImGui::SameLine();
   }
-  if (!scene_has_glass(s.edited)) ImGui::TextDisabled("(no glass: Fresnel does nothing)");
+  // The note goes beside the checkbox, and only a note: with glass the next
+  // widget (paths/sample) must start its own line, or it lands beside the
+  // checkbox, its label cut off, and the widgets below move up a line.
+  if (!scene_has_glass(s.edited)) {
+    if (!meshes.empty()) ImGui::SameLine();
+    ImGui::TextDisabled("(no glass: Fresnel does nothing)");
+  }
 }
 
 // Path reuse (render/path_reuse.h): the block side.
@@ -308,7 +313,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
   ImGui::PushItemWidth(-130.0f * ImGui::GetIO().FontGlobalScale);
 
-  status_section(s, now);
+  s.bar_spp = status_section(s, now);
   controls(s, req);
   if (!s.eye_outside.empty()) {
     // The image is black or wrong from out there: say so, and the way back.

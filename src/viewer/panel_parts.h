@@ -2,6 +2,8 @@
 // draw_panel().
 #pragma once
 
+#include <cstdint>
+
 #include "viewer/viewer_state.h"
 
 namespace whisker {
@@ -10,8 +12,9 @@ namespace whisker {
 void tip(const char* text);
 
 // State, progress toward the target, speed, error and its plot: a fixed
-// number of lines, so nothing below moves while it renders.
-void status_section(const ViewerState& s, double now);
+// number of lines, so nothing below moves while it renders. Returns the
+// samples per pixel its progress bar says.
+std::uint64_t status_section(const ViewerState& s, double now);
 // Pause, restart, save; the last message in a fixed two-line box.
 void controls(const ViewerState& s, PanelRequests& req);
 // Where Save writes, and under which name; Save scene.

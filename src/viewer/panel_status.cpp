@@ -47,11 +47,20 @@ std::string state_text(const ViewerState& s) {
   return "rendering";
 }
 
+}  // namespace
+
+std::uint64_t shown_spp(const ViewerState& s) {
+  const Snapshot& sn = s.snap;
+  return sn.generation == s.generation && !sn.preview ? sn.spp : 0;
+}
+
+namespace {
+
 ProgressInfo progress_of(const ViewerState& s) {
   const Snapshot& sn = s.snap;
   ProgressInput in;
   const bool same = sn.generation == s.generation && !sn.preview;
-  in.spp_done = same ? sn.spp : 0;
+  in.spp_done = shown_spp(s);
   in.seconds_done = same ? sn.counters.seconds : 0.0;
   in.target_spp = s.applied.settings.target_spp;
   const auto& p = s.progress;
@@ -68,14 +77,19 @@ ProgressInfo progress_of(const ViewerState& s) {
 }
 
 // The bar toward the target (or through the pass without one), then time.
-void progress_lines(const ViewerState& s) {
+// Returns the samples per pixel the bar says.
+std::uint64_t progress_lines(const ViewerState& s) {
   const ProgressInfo p = progress_of(s);
   const int target = s.applied.settings.target_spp;
+  // The bar's fill moves with the pass in flight; its number is the
+  // samples in the image, as the window's title says (with several samples
+  // a pass, counting the pass in flight made it run ahead of the title).
+  const unsigned long long spp = shown_spp(s);
   char overlay[96];
   if (target > 0)
-    std::snprintf(overlay, sizeof overlay, "%.0f / %d spp", std::floor(p.done_spp), target);
+    std::snprintf(overlay, sizeof overlay, "%llu / %d spp", spp, target);
   else
-    std::snprintf(overlay, sizeof overlay, "%.0f spp (no target)", std::floor(p.done_spp));
+    std::snprintf(overlay, sizeof overlay, "%llu spp (no target)", spp);
   ImGui::ProgressBar(target > 0 ? float(p.fraction) : float(p.pass_fraction), ImVec2(-1, 0),
                      overlay);
   tip("Samples per pixel so far against the target (Sampling > target spp). "
@@ -106,6 +120,7 @@ void progress_lines(const ViewerState& s) {
   tip("samples/s: camera samples (one per pixel per spp) per second. With splitting "
       "each sample continues as several paths (up to 16 with 4 x 4), so paths/s is "
       "higher. rays/s counts every ray traced: camera, bounce and shadow rays.");
+  return spp;
 }
 
 // The relative error against passes, log scale, with its axes.
@@ -157,11 +172,11 @@ void error_plot(const ViewerState& s) {
 
 }  // namespace
 
-void status_section(const ViewerState& s, double now) {
+std::uint64_t status_section(const ViewerState& s, double now) {
   const Snapshot& sn = s.snap;
   const bool stale = sn.generation != s.generation;
   ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s).c_str());
-  progress_lines(s);
+  const std::uint64_t bar_spp = progress_lines(s);
   if (!stale && sn.spp > 0 && deterministic_estimate(s.applied))
     ImGui::Text("noise: none, exact (a deterministic estimate)");
   else if (std::isfinite(s.rse))
@@ -182,6 +197,7 @@ void status_section(const ViewerState& s, double now) {
     ImGui::Text("window redraw -");
   tip("Time the viewer takes to draw one frame of this window (mean of the last 30), "
       "not the render time. Rendering runs on its own threads.");
+  return bar_spp;
 }
 
 void controls(const ViewerState& s, PanelRequests& req) {

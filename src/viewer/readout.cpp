@@ -59,6 +59,34 @@ PixelReadout read_pixel(const Snapshot& s, int x, int y) {
   return r;
 }
 
+std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool held) {
+  char buf[128];
+  std::vector<std::string> lines;
+  std::snprintf(buf, sizeof buf, "pixel (%d, %d)%s", x, y, held ? "  [held image]" : "");
+  lines.push_back(buf);
+  std::snprintf(buf, sizeof buf, "radiance  %.4g  %.4g  %.4g", r.rgb[0], r.rgb[1], r.rgb[2]);
+  lines.push_back(buf);
+  if (r.std_error >= 0.0 && r.luminance > 0.0)
+    std::snprintf(buf, sizeof buf, "luminance %.4g +- %.3g (%.3g %%)", r.luminance, r.std_error,
+                  100.0 * r.std_error / r.luminance);
+  else if (r.std_error >= 0.0)
+    std::snprintf(buf, sizeof buf, "luminance %.4g +- %.3g", r.luminance, r.std_error);
+  else
+    std::snprintf(buf, sizeof buf, "luminance %.4g  (error needs 2 samples)", r.luminance);
+  lines.push_back(buf);
+  std::snprintf(buf, sizeof buf, "%llu sample%s (std. error of the pixel mean)",
+                (unsigned long long)r.samples, r.samples == 1 ? "" : "s");
+  lines.push_back(buf);
+  return lines;
+}
+
+BoxPlace place_readout(float mx, float my, float w, float h, float ax, float ay, float aw, float ah) {
+  BoxPlace p{mx + 16.0f, my + 8.0f};
+  if (p.x + w > ax + aw) p.x = std::max(ax, mx - 8.0f - w);
+  if (p.y + h > ay + ah) p.y = std::max(ay, my - 8.0f - h);
+  return p;
+}
+
 float aces_narkowicz(float x) {
   x = std::max(x, 0.0f);
   const float a = 2.51f, b = 0.03f, c = 2.43f, d = 0.59f, e = 0.14f;

@@ -49,6 +49,20 @@ struct PixelReadout {
 };
 PixelReadout read_pixel(const Snapshot& s, int x, int y);
 
+// The readout's lines as the tooltip over the image shows them: the pixel
+// (and "[held image]" on the held side of a comparison), its radiance, its
+// luminance with the standard error, and "1 sample" / "N samples".
+std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool held);
+
+// Where a box of w x h (the readout) goes for the mouse at (mx, my), all in
+// window units: below right of the pointer, flipped left of it (above it)
+// where it would leave the image area (ax, ay, aw, ah) on the right (at the
+// bottom), so it never covers the panel beside the image.
+struct BoxPlace {
+  float x = 0, y = 0;
+};
+BoxPlace place_readout(float mx, float my, float w, float h, float ax, float ay, float aw, float ah);
+
 // Tone curves of the display (DisplayParams::tonemap).
 enum Tonemap : int { kTonemapReport = 0, kTonemapAces = 1 };
 // Narkowicz 2015, "ACES Filmic Tone Mapping Curve": a rational fit of the

@@ -26,6 +26,7 @@
 #include "viewer/camera_control.h"
 #include "viewer/controller.h"
 #include "viewer/display.h"
+#include "viewer/event_log.h"
 #include "viewer/input.h"
 #include "viewer/overlay.h"
 #include "viewer/scene_diff.h"
@@ -180,9 +181,9 @@ struct Session {
     }
     // Over the image: legend, wipe line, the pixel under the mouse (not in a
     // scripted screenshot, which compares with the headless render).
-    const ImageArea image_area{rect.x / f.fb_per_win, rect.y / f.fb_per_win, rect.w / f.fb_per_win,
-                         rect.h / f.fb_per_win};
-    draw_image_overlays(s, image_area, opt.screenshot_path.empty());
+    image_area = {rect.x / f.fb_per_win, rect.y / f.fb_per_win, rect.w / f.fb_per_win,
+                  rect.h / f.fb_per_win};
+    draw_image_overlays(s, image_area, opt.screenshot_path.empty(), &readout);
     // Switching to the noise view needs the sums of squares on the GPU.
     if ((s.display.mode == 1) != uploaded_mode) upload_image();
     return rect;
@@ -220,10 +221,13 @@ struct Session {
     debug_display.upload(s.debug.image, false);
   }
 
-  // The samples per pixel of the current settings' own passes, as the panel
-  // counts them (0 until the first lands).
+  // The samples per pixel of the current settings' own passes, as the
+  // panel's bar said them this frame (0 until the first lands). The panel
+  // is drawn before the frame's edits are carried out, so the title takes
+  // the bar's number rather than counting again after them: in an edit's
+  // frame it said 0 spp while the bar still showed the old render's 5.
   void update_title() {
-    const std::uint64_t spp = s.snap.generation == s.generation ? s.snap.spp : 0;
+    const std::uint64_t spp = s.bar_spp;
     if (spp == title_spp) return;
     title_spp = spp;
     const std::string title = "Whisker - " + s.scene_label + " - " + std::to_string(spp) + " spp";
@@ -265,28 +269,10 @@ struct Session {
     }
   }
 
-  // The event log (--edit-log): a line when the settings change (an edit,
-  // scripted or by hand, t = the frame that made it) and a line per drawn
-  // frame after its swap: what the frame shows of which generation.
-  std::FILE* log = nullptr;
-  std::uint64_t logged_generation = 0;
-  void log_frame(double t0, double t_shown) {
-    if (!log) return;
-    if (s.generation != logged_generation) {
-      std::fprintf(log, "edit t=%.6f gen=%llu\n", t0, (unsigned long long)s.generation);
-      logged_generation = s.generation;
-    }
-    const bool own_current = s.snap.generation == s.generation;
-    std::fprintf(log,
-                 "frame t=%.6f gen=%llu shown_gen=%llu shown_quick=%llu shown_own=%llu own_gen=%llu "
-                 "own_spp=%llu own_passes=%llu rse=%.6g\n",
-                 t_shown, (unsigned long long)s.generation,
-                 (unsigned long long)s.shown.image.generation,
-                 (unsigned long long)s.shown.quick_spp, (unsigned long long)s.shown.own_spp,
-                 (unsigned long long)s.snap.generation, (unsigned long long)s.snap.spp,
-                 (unsigned long long)s.snap.counters.passes, own_current ? s.rse : std::nan(""));
-    std::fflush(log);
-  }
+  // --edit-log: what each drawn frame showed (viewer/event_log.h).
+  EventLog log{};
+  ReadoutShown readout{};  // the pixel readout drawn this frame
+  ImageArea image_area{};  // where the image is, in window units
 
   // Runs until the window closes or the scripted run is done; the exit code.
   int run() {
@@ -314,7 +300,7 @@ struct Session {
       if (finish && !opt.screenshot_path.empty() && !take_screenshot(opt.screenshot_path, rect, s, fstats, f.fb_w, f.fb_h))
         exit_code = 2;  // an output that cannot be written, as headless
       glfwSwapBuffers(window);
-      log_frame(t0, glfwGetTime());
+      log.frame(s, t0, glfwGetTime(), title_spp, readout, image_area);
       record_timing(t0, t_work, glfwGetTime(), finish);
       if (finish) break;
     }
@@ -413,8 +399,7 @@ int run_viewer(const ViewerOptions& opt) {
   Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
                   kPanelWidth * imgui.ui_scale()};
   if (!opt.event_log.empty()) {
-    session.log = std::fopen(opt.event_log.c_str(), "w");
-    if (!session.log) {
+    if (!session.log.open(opt.event_log)) {
       std::fprintf(stderr, "whisker: --edit-log %s: cannot write it\n", opt.event_log.c_str());
       renderer.stop();
       return 2;
@@ -422,7 +407,6 @@ int run_viewer(const ViewerOptions& opt) {
   }
   const int exit_code = session.run();
   session.print_summary();
-  if (session.log) std::fclose(session.log);
   renderer.stop();
   return exit_code;
 }

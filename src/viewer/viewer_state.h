@@ -91,6 +91,8 @@ struct ViewerState {
   int compare = kCompareOff;
   float wipe = 0.5f;      // held image left of this fraction of the width
 
+  std::uint64_t bar_spp = 0;  // the samples per pixel the panel's bar said last frame
+
   // UI frame times (ms), for the panel and scripted-run summaries.
   std::vector<float> frame_ms;
   float frame_ms_avg = 0.0f;
@@ -100,6 +102,12 @@ struct ViewerState {
 // (window coordinates), `panel_w` wide; edits state.edited and fills `req`.
 void draw_panel(ViewerState& state, float window_w, float window_h, float panel_w,
                 double now, PanelRequests& req);
+
+// The samples per pixel that the window's title and the panel's progress
+// bar both say: the current settings' own published passes (0 until the
+// first of them lands; never the quick passes, never a pass in flight, which
+// moves the bar's fill only).
+std::uint64_t shown_spp(const ViewerState& state);
 
 // The report's display mapping as an exposure: L / 255^2.2.
 float report_exposure();
