@@ -203,7 +203,6 @@ int run_headless(const HeadlessOptions& o) {
   for (;;) {
     if (!o.progress) {  // nothing to print: wait for the target or a signal
       wait_for_target(renderer, gen, target);
-      renderer.snapshot(snap);
       break;
     }
     renderer.snapshot(snap);
@@ -216,6 +215,7 @@ int run_headless(const HeadlessOptions& o) {
   renderer.stop();
   checkpoints.stop();
   progress.finish();
+  renderer.take_snapshot(snap);  // the last pass completed before the stop
 
   if (const std::string why = renderer.failure(); !why.empty()) {
     std::fprintf(stderr, "whisker: %s: needs about %llu MB; nothing written\n", why.c_str(),
@@ -223,7 +223,6 @@ int run_headless(const HeadlessOptions& o) {
     return 2;
   }
   if (interrupt_signal()) {
-    renderer.snapshot(snap);  // the last pass completed before the stop
     return finish_interrupted(o, scene, snap, gen, renderer.threads());
   }
   const int code = write_outputs(o, scene, snap, renderer.threads());

@@ -190,6 +190,12 @@ bool ProgressiveRenderer::snapshot(Snapshot& out) const {
   return true;
 }
 
+void ProgressiveRenderer::take_snapshot(Snapshot& out) {
+  std::lock_guard lock(publish_mutex_);
+  out = std::move(published_);
+  published_ = Snapshot{};
+}
+
 bool ProgressiveRenderer::quick_snapshot(Snapshot& out) const {
   std::lock_guard lock(publish_mutex_);
   if (quick_published_.version == out.version) return false;

@@ -98,6 +98,10 @@ class ProgressiveRenderer {
   // Copies the latest published pass into `out` if its version differs from
   // out.version; returns whether it copied. Never waits for a pass.
   bool snapshot(Snapshot& out) const;
+  // After stop(): moves the latest published pass into `out`, no copy (a
+  // render's double sums are tens of megabytes, and a fresh copy's page
+  // faults cost more than the copy); the renderer keeps an empty one.
+  void take_snapshot(Snapshot& out);
 
   // Blocks until generation `gen` has at least `spp` samples per pixel (or
   // reached its target). Returns false if the renderer was stopped first.
