@@ -7,7 +7,7 @@
 #                                   3. bounded fuzzing (when clang is present).
 #   scripts/test.sh --normal        step 1 only (the quick check while working)
 #   scripts/test.sh --sanitize      step 2 only
-#   scripts/test.sh --fuzz [SECS]   step 3 only (SECS per harness; default 20)
+#   scripts/test.sh --fuzz [SECS]   step 3 only (SECS per harness; default 10)
 #   scripts/test.sh --sanitize-viewer
 #                                   the viewer tests too under ASan + UBSan (Xvfb; slow)
 # Arguments after -- go to ctest (e.g. -- -R Sphere).
@@ -15,10 +15,10 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
-# The full run fuzzes 20 s per harness: a smoke test that every harness
+# The full run fuzzes 10 s per harness: a smoke test that every harness
 # builds, replays its corpus and survives fresh mutations, inside CI's time
 # budget; long runs are tests/fuzz/run.sh's job (see its header).
-steps=() fuzz_seconds=${WHISKER_FUZZ_SECONDS:-20} ctest_args=()
+steps=() fuzz_seconds=${WHISKER_FUZZ_SECONDS:-10} ctest_args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --normal) steps+=(normal) ;;
@@ -40,15 +40,17 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # nothing a sanitizer would add: 20 s of one thread adding millions of
 # samples in Release (5-10x that under ASan/TSan); it shares its code path
 # with the shorter Progressive.* tests, which do run.
-sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$'
+# The linear-time scene parse: a timing test of 400k objects (the parser's
+# memory safety is the scene fuzzer's job, which runs under ASan + UBSan).
+sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$|^Faults\.scene-parse'
 # TSan looks for data races, and only the renderer (src/render/progressive.*)
 # starts threads: the suites of the geometry and scene layers, which never
 # do, run under ASan + UBSan only (they are most of the TSan run's time).
 # The hard cases too: each is single renders through the same threaded code
 # as the Headless.* tests, checked for numbers (ASan + UBSan run them). So
 # are the shard and command-line suites (processes, files and merges around
-# the same renderer) and the scene-parsing fault (one thread).
-tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase|Shards|CommandLineE2E)\.|^Faults\.scene-parse"
+# the same renderer).
+tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase|Shards|CommandLineE2E)\."
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
 sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay fuzz_part_replay)
