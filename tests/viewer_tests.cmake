@@ -22,54 +22,39 @@ add_dependencies(viewer_window_tests whisker)
 gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
   PROPERTIES TIMEOUT 600 RESOURCE_LOCK whisker_xvfb LABELS viewer)
 
+# whisker_viewer_script_test(NAME SCRIPT TIMEOUT): a window test driven by
+# xdotool from a shell script given the whisker binary; exit 77 (no xdotool
+# or Xvfb) skips it; one X server at a time.
+function(whisker_viewer_script_test name script timeout)
+  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/${script} $<TARGET_FILE:whisker>)
+  set_tests_properties(${name} PROPERTIES
+    SKIP_RETURN_CODE 77 TIMEOUT ${timeout} RESOURCE_LOCK whisker_xvfb LABELS viewer)
+endfunction()
+
 # Real mouse and keyboard input through xdotool (skipped without it).
-add_test(NAME ViewerInput.PanelClicksRestartNothingDragOrbits
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_input_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.PanelClicksRestartNothingDragOrbits PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.PanelClicksRestartNothingDragOrbits viewer_input_test.sh 400)
 
 # Typing into the panel's fields through xdotool (skipped without it).
-add_test(NAME ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_typing_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.TypingAppliesOnEnterFiresNoShortcutUndoRedo viewer_typing_test.sh 400)
 
 # Save writes the image as shown (exposure set by typing) under a free name.
-add_test(NAME ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_save_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 400 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.SaveWritesWhatTheWindowShowsUnderAFreeName viewer_save_test.sh 400)
 
 # The camera stops at the wall; quick key presses all count.
-add_test(NAME ViewerInput.WheelStaysInTheRoomNoKeyPressLost
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_room_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.WheelStaysInTheRoomNoKeyPressLost PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.WheelStaysInTheRoomNoKeyPressLost viewer_room_test.sh 300)
 
 # In the A/B wipe, Save writes both halves as the window shows them and names
 # the folder.
-add_test(NAME ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_wipe_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.WipeSaveIsTheScreenBothHalvesAndNamesTheFolder viewer_wipe_test.sh 300)
 
 # The pixel readout says "1 sample" / "N samples" and stays over the image;
 # the title and the panel say the same samples per pixel in every frame.
-add_test(NAME ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_readout_window_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.ReadoutStaysOverTheImageTitleAgreesWithPanel viewer_readout_window_test.sh 300)
 
 # After Save scene nothing is left to discard: loading asks nothing; after a
 # further edit it asks.
-add_test(NAME ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEditAsks
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_scene_save_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEditAsks PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEditAsks viewer_scene_save_test.sh 300)
 
 # A new user's walk on the cat: orbit, wheel, light, glass, Fresnel,
 # indirect, depth, undo, redo, save, Esc; a sane image after every step.
-add_test(NAME ViewerInput.NewUserWalkOnTheCatStaysSane
-  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/viewer_walk_test.sh $<TARGET_FILE:whisker>)
-set_tests_properties(ViewerInput.NewUserWalkOnTheCatStaysSane PROPERTIES
-  SKIP_RETURN_CODE 77 TIMEOUT 300 RESOURCE_LOCK whisker_xvfb LABELS viewer)
+whisker_viewer_script_test(ViewerInput.NewUserWalkOnTheCatStaysSane viewer_walk_test.sh 300)
