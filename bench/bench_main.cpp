@@ -1,4 +1,4 @@
-// whisker-bench rays FILE [--accel brute|bbox|midpoint|sah] [--no-spatial-splits] [--threads T] [--json]
+// whisker-bench rays FILE [--accel brute|bbox|midpoint|sah] [--threads T] [--json]
 //
 // Traces a ray file against the cat alone and prints rays, hits, the sum of
 // hit distances and Mrays/s on one thread and on all threads (median of
@@ -36,7 +36,6 @@ struct Options {
   bool json = false;
   bool no_embree = false;
   bool use_min = false;
-  bool no_spatial_splits = false;
   int subdivide = 0;
 };
 
@@ -65,7 +64,7 @@ int run_rays(const Options& opt) {
   const std::vector<Triangle> tris = subdivide(bench::load_cat(opt.mesh), opt.subdivide);
   BvhMethod kind = BvhMethod::Sah;
   parse(opt.accel, kind);  // CLI11 has checked the name
-  const Bvh bvh = Bvh::build(tris, kind, !opt.no_spatial_splits);
+  const Bvh bvh = Bvh::build(tris, kind);
   auto trace = [&](const Ray& r, float& t) {
     Hit h;
     if (!bvh.intersect(r, h)) return false;
@@ -107,7 +106,6 @@ int run_rays(const Options& opt) {
   j["mrays_per_s_all"] = all.mrays_per_s(rays.size());
   j["threads"] = opt.threads;
   j["accel"] = opt.accel;
-  j["spatial_splits"] = !opt.no_spatial_splits;
   j["triangles"] = bvh.triangle_count();
   j["nodes"] = bvh.node_count();
   j["build_ms"] = bvh.build_seconds() * 1e3;
@@ -165,8 +163,6 @@ int main(int argc, char** argv) {
   rays->add_option("--subdivide", opt.subdivide, "split each triangle in 4, this many times")
       ->check(CLI::Range(0, 5));
   rays->add_flag("--no-embree", opt.no_embree, "skip the Embree comparison");
-  rays->add_flag("--no-spatial-splits", opt.no_spatial_splits,
-                 "sah: the tree of whole triangles, without spatial splits");
   rays->add_flag("--min", opt.use_min, "fastest repetition (1 thread: its CPU time) instead of the median");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -1,6 +1,5 @@
-// Axis-aligned boxes (the binary BVH builders' bounds, a triangle's split for
-// spatial splits) and the conservative scalar ray-box slab test (the one-box
-// BBox method, the object-level BVH).
+// Axis-aligned boxes (the binary BVH builders' bounds) and the conservative
+// scalar ray-box slab test (the one-box BBox method, the object-level BVH).
 #pragma once
 
 #include <algorithm>
@@ -60,45 +59,6 @@ inline Box3 bounds_of(const Triangle& t) {
   b.grow(t.v1);
   b.grow(t.v2);
   return b;
-}
-
-// The part of triangle t inside box `within` split by the plane x[axis] =
-// plane: boxes of its left (x <= plane) and right (x >= plane) parts, each
-// intersected with `within` (Stich, Friedrich, Dietrich, "Spatial Splits in
-// Bounding Volume Hierarchies", HPG 2009, section 4.3). Conservative: an edge
-// crossing the plane crosses it at a point computed in double and widened by
-// 2e-7 of the endpoints' magnitude (more than the double and float roundings),
-// so no point of the triangle falls outside both boxes. A part with no point
-// of the triangle comes back empty.
-inline void split_triangle(const Triangle& t, const Box3& within, int axis, float plane,
-                           Box3& left, Box3& right) {
-  left = right = Box3{};
-  const vec3* v[3] = {&t.v0, &t.v1, &t.v2};
-  for (int i = 0; i < 3; ++i) {
-    const vec3& a = *v[i];
-    const vec3& b = *v[(i + 1) % 3];
-    if (a[axis] <= plane) left.grow(a);
-    if (a[axis] >= plane) right.grow(a);
-    if ((a[axis] < plane && b[axis] > plane) || (a[axis] > plane && b[axis] < plane)) {
-      const double s = (double(plane) - a[axis]) / (double(b[axis]) - a[axis]);
-      Box3 q;
-      for (int k = 0; k < 3; ++k) {
-        const double x = a[k] + s * (double(b[k]) - a[k]);
-        const float m = 2e-7f * (std::fabs(a[k]) + std::fabs(b[k])) + 1e-37f;
-        q.lo[k] = k == axis ? plane : static_cast<float>(x) - m;
-        q.hi[k] = k == axis ? plane : static_cast<float>(x) + m;
-      }
-      left.grow(q);
-      right.grow(q);
-    }
-  }
-  left.hi[axis] = std::min(left.hi[axis], plane);
-  right.lo[axis] = std::max(right.lo[axis], plane);
-  for (Box3* p : {&left, &right}) {
-    p->lo = glm::max(p->lo, within.lo);
-    p->hi = glm::min(p->hi, within.hi);
-    if (p->empty()) *p = Box3{};
-  }
 }
 
 }  // namespace whisker

@@ -26,7 +26,7 @@ bool zero_area(const Triangle& t) {
 
 }  // namespace
 
-Bvh Bvh::build(std::vector<Triangle> tris, BvhMethod method, bool spatial_splits) {
+Bvh Bvh::build(std::vector<Triangle> tris, BvhMethod method) {
   const auto start = std::chrono::steady_clock::now();
   Bvh b;
   b.method_ = method;
@@ -52,10 +52,8 @@ Bvh Bvh::build(std::vector<Triangle> tris, BvhMethod method, bool spatial_splits
       b.node_count_ = b.wide_.nodes.size();
       break;
     case BvhMethod::Sah:
-      // Spatial splits, then the SAH-optimal choice of each node's 8 children.
-      b.wide_ = collapse_to_wide_sah(spatial_splits ? build_binary_sbvh(tris, kSahMaxLeaf)
-                                                    : build_binary_sah(tris, kSahMaxLeaf),
-                                     tris);
+      // Binned SAH, then the SAH-optimal choice of each node's 8 children.
+      b.wide_ = collapse_to_wide_sah(build_binary_sah(tris, kSahMaxLeaf), tris);
       b.node_count_ = b.wide_.nodes.size();
       break;
   }

@@ -24,10 +24,8 @@ class Bvh {
  public:
   Bvh() = default;
   // Builds over `tris` with the chosen method (brute force, one box, the
-  // report's longest-axis barycentre split, binned SAH). `spatial_splits`
-  // off builds the SAH tree from whole triangles only (for measuring what
-  // the splits are worth: bench/bench_main.cpp --no-spatial-splits).
-  static Bvh build(std::vector<Triangle> tris, BvhMethod method, bool spatial_splits = true);
+  // report's longest-axis barycentre split, binned SAH).
+  static Bvh build(std::vector<Triangle> tris, BvhMethod method);
 
   // Closest hit in (ray.tmin, min(ray.tmax, hit.t)): fills hit (t, kind =
   // Triangle, prim = index into the triangles given to build, u, v) and

@@ -32,11 +32,6 @@ BinaryBvh build_binary_sah(const std::vector<Triangle>& tris, std::uint32_t max_
 BinaryBvh build_binary_sah(std::vector<Box3> boxes, std::vector<vec3> centroids,
                            std::uint32_t max_leaf);
 
-// The same over triangles with spatial splits as well (SBVH, Stich et al.
-// 2009): a triangle may be referenced by several leaves, prims then repeats
-// it. Each subtree's references are contiguous in prims from its first.
-BinaryBvh build_binary_sbvh(const std::vector<Triangle>& tris, std::uint32_t max_leaf);
-
 // The report's builder (its section on BVH, after the lecture notes): split
 // the node's box at the middle of its longest axis, triangles going left or
 // right by their barycentre; a leaf below 5 triangles or when a side is empty.

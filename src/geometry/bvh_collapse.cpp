@@ -25,16 +25,8 @@ struct Collapser {
   WideBvh out;
 
   std::uint32_t leaf_ref(const BinaryNode& n) { return leaf_ref(n.first, n.count); }
-  // Packets of prims[b, b + n), each triangle once: a leaf taken from a
-  // subtree with spatial splits may hold two parts of one triangle.
+  // Packets of prims[b, b + n) (a subtree's triangles are contiguous there).
   std::uint32_t leaf_ref(std::uint32_t b, std::uint32_t n) {
-    std::vector<std::uint32_t> prims;
-    prims.reserve(n);
-    for (std::uint32_t i = b; i < b + n; ++i)
-      if (n > kWidth * kMaxLeafPackets ||
-          std::find(prims.begin(), prims.end(), bin.prims[i]) == prims.end())
-        prims.push_back(bin.prims[i]);
-    n = static_cast<std::uint32_t>(prims.size());
     const std::uint32_t first = static_cast<std::uint32_t>(out.packets.size());
     const std::uint32_t count = (n + kWidth - 1) / kWidth;
     for (std::uint32_t p = 0; p < count; ++p) {
@@ -43,7 +35,7 @@ struct Collapser {
       for (int lane = 0; lane < kWidth; ++lane) {
         const std::uint32_t i = p * kWidth + lane;
         if (i >= n) break;
-        const std::uint32_t prim = prims[i];
+        const std::uint32_t prim = bin.prims[b + i];
         const Triangle& t = tris[prim];
         const vec3* vs[3] = {&t.v0, &t.v1, &t.v2};
         for (int v = 0; v < 3; ++v)
