@@ -10,7 +10,7 @@
 
 namespace whisker {
 
-vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler) {
+vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler) {
   const RenderSettings& settings = ctx.settings;
   Ray& ray = state.ray;
   vec3& beta = state.beta;
@@ -106,9 +106,8 @@ Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler
 }
 
 vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
-  const Ray ray = camera_ray(ctx, cam, px, sampler);
-  const FlushDenormals ftz;
-  return trace_path(ctx, PathState{ray}, sampler);
+  PathState state{camera_ray(ctx, cam, px, sampler)};
+  return trace_path(ctx, state, sampler);
 }
 
 }  // namespace whisker

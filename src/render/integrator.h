@@ -77,8 +77,10 @@ vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Samp
 // Pixel px's camera ray in render space, jittered when AA is on.
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
 
-// The light a path gathers from `state` on.
-vec3 trace_path(const PathContext& ctx, PathState state, Sampler& sampler);
+// The light a path gathers from `state` on; the state is advanced in place
+// (taken by reference: copying it whole into the call cost a store-forward
+// stall per path).
+vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler);
 
 // Whether a path of throughput beta ends here (RenderSettings::zero_cutoff):
 // it can carry no more light, so its light and bounces would all be zero.
@@ -107,8 +109,9 @@ DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const Surfac
 std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
                                   PathState& state, Sampler& sampler);
 
-// Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a camera
-// sample is traced, the caller's mode restored after. A path's throughput
+// Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a tile's
+// samples are traced (render_tile: once a tile, as reading and writing MXCSR
+// stalls the pipeline), the caller's mode restored after. A path's throughput
 // falls geometrically; without this it sinks through the denormal range
 // (2^-126 to 2^-149, slow on most cores) instead of reaching the zero that
 // ends the path (RenderSettings::zero_cutoff), and a closed room of albedo

@@ -170,8 +170,6 @@ void sample_block(const PathContext& ctx, const CameraFrame& cam, const PixelBlo
   thread_local std::vector<Bounce> bounces;
   bounces.clear();
   {
-    // The paths, with denormals flushed as sample_pixel traces them.
-    const FlushDenormals ftz;
     Sampler samplers[kMaxPixels];
     vec3 carried(0.0f);
     for (int p = 0; p < pixels; ++p) {
