@@ -12,8 +12,9 @@
 #   first pass:  the first frame with a full pass of the new settings;
 #   5 % noise:   the first frame whose own passes' noise figure is <= 5 %.
 # Then a mouse drag through xdotool (60 moves a second for 3 s on the
-# image): how many different camera positions the window showed per second
-# while the mouse moved, and how far behind the mouse the image was (time
+# image, one xdotool process): how many different camera positions the
+# window showed per second, of how many the mouse made,
+# and how far behind the mouse the image was (time
 # from the frame that made an edit to the first frame showing it).
 # Medians over the repeats; the machine's load is printed with them.
 set -u
@@ -77,16 +78,20 @@ pid=$!
 wid=$(timeout 60 xdotool search --sync --onlyvisible --name '^Whisker' | head -1)
 sleep 3
 xdotool mousemove --window "$wid" 200 300; sleep 0.3; xdotool mousedown 1; sleep 0.1
-for k in $(seq 180); do xdotool mousemove --window "$wid" $((200 + k / 2)) 300; sleep 0.0167; done
+# One xdotool process for the whole drag (a process per move would cap the
+# rate at what starting xdotool costs): a pixel further every 1/60 s.
+moves=()
+for k in $(seq 180); do moves+=(mousemove --window "$wid" $((200 + k)) 300 sleep 0.0167); done
+xdotool "${moves[@]}"
 xdotool mouseup 1; sleep 1
 xdotool key --window "$wid" Escape
 wait $pid
 INNER
 if command -v xdotool >/dev/null; then
-  rates=() lags=()
+  rates=() lags=() inputs=()
   for r in $(seq "$repeats"); do
     xvfb-run -a -s "-screen 0 1600x900x24" bash "$dir/drag.sh" "$bin" "$scene" "$dir/d$r.log"
-    read -r rate lag < <(python3 - "$dir/d$r.log" <<'PY'
+    read -r rate lag input < <(python3 - "$dir/d$r.log" <<'PY'
 import sys, statistics
 edits, frames = {}, []
 for line in open(sys.argv[1]):
@@ -96,7 +101,7 @@ for line in open(sys.argv[1]):
     if parts[0] == "edit": edits[kv["gen"]] = float(kv["t"])
     else: frames.append((float(kv["t"]), kv["shown_gen"]))
 gens = sorted(edits, key=lambda g: edits[g])[1:]  # the drag's edits (not the first load)
-if len(gens) < 2: print("- -"); sys.exit()
+if len(gens) < 2: print("- - -"); sys.exit()
 t0, t1 = edits[gens[0]], edits[gens[-1]]
 shown = {}
 for t, g in frames:
@@ -104,10 +109,10 @@ for t, g in frames:
 during = [g for g in shown if t0 <= shown[g] <= t1 + 0.2 and g in gens]
 rate = len(during) / max(t1 - t0, 1e-3)
 lag = statistics.median(shown[g] - edits[g] for g in during) if during else float("nan")
-print("%.1f %.0f" % (rate, lag * 1000))
+print("%.1f %.0f %.1f" % (rate, lag * 1000, (len(gens) - 1) / max(t1 - t0, 1e-3)))
 PY
 )
-    rates+=("$rate") lags+=("$lag")
+    rates+=("$rate") lags+=("$lag") inputs+=("$input")
   done
-  echo "drag: $(median "${rates[@]}") camera positions shown per second, image $(median "${lags[@]}") ms behind the mouse (runs: ${rates[*]} | ${lags[*]})"
+  echo "drag: $(median "${rates[@]}") camera positions shown per second of $(median "${inputs[@]}") made, image $(median "${lags[@]}") ms behind the mouse (runs: ${rates[*]} | ${inputs[*]} | ${lags[*]})"
 fi

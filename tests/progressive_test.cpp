@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "render/progressive.h"
+#include "render/quick_passes.h"
 #include "scene/scene_io.h"
 #include "render_util.h"
 
@@ -122,8 +123,6 @@ TEST(Progressive, ReachingTheTargetStops) {
   EXPECT_TRUE(snap.done);
 }
 
-// With previews on, a new generation first shows a coarse image (one sample
-// per 4x4 block, flagged) ...
 TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   // The viewer's quick passes (set_preview): an edit's first images are
   // whole passes of one path per sample, published apart from the
@@ -163,6 +162,59 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   EXPECT_EQ(own.spp, 2u);
   EXPECT_EQ(own.counters.passes, 2u);
   EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
+}
+
+// While the mouse drags (set_dragging), a quick pass renders one path per
+// 2 x 2 pixels on the same image plane: pixel for pixel a render of the
+// quick settings at half the size, flagged with its stride. An edit made
+// after the drag gets full-size quick passes again.
+TEST(Progressive, QuickPassesWhileDraggingAreCoarseThenFullSize) {
+  Scene scene = load_scene(resolve_scene("indirect"));
+  scene.camera.width = 96;
+  scene.camera.height = 80;
+  scene.settings.split = {4, 4};
+  scene.settings.target_spp = 2;
+  ProgressiveRenderer r(1);
+  r.set_preview(true);
+  r.set_dragging(true);  // before the first pass: no full-size pass timed yet
+  const auto gen = r.set_scene(scene);
+  r.start();
+  Snapshot quick;
+  while (!r.quick_snapshot(quick)) std::this_thread::yield();
+  ASSERT_EQ(quick.generation, gen);
+  EXPECT_EQ(quick.stride, 2);
+  EXPECT_EQ(quick.width, 48);
+  EXPECT_EQ(quick.height, 40);
+  ASSERT_GE(quick.spp, 1u);
+  Scene coarse = scene;
+  coarse.settings = cheap_settings(scene.settings);
+  coarse.settings.target_spp = int(quick.spp);
+  coarse.camera.width = 48;
+  coarse.camera.height = 40;
+  EXPECT_EQ(quick.sum, render(coarse, 1).sum);
+
+  r.set_dragging(false);
+  scene.light.position.x += 1.0f;
+  const auto after = r.set_scene(scene);
+  while (!r.quick_snapshot(quick) || quick.generation != after) std::this_thread::yield();
+  EXPECT_EQ(quick.stride, 1);
+  EXPECT_EQ(quick.width, 96);
+  ASSERT_TRUE(r.wait_for(after, 2));
+  Snapshot own;
+  r.snapshot(own);
+  r.stop();
+  EXPECT_EQ(own.stride, 1);
+  EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
+}
+
+TEST(QuickPasses, DragStrideBringsAPassUnderItsAim) {
+  EXPECT_EQ(QuickPasses::drag_stride(0.0, 512, 512), 2);    // not timed yet
+  EXPECT_EQ(QuickPasses::drag_stride(0.015, 512, 512), 1);  // already fast enough
+  EXPECT_EQ(QuickPasses::drag_stride(0.07, 512, 512), 2);   // 70 ms / 4 = 17.5 ms
+  EXPECT_EQ(QuickPasses::drag_stride(0.2, 512, 512), 4);    // 200 ms / 16 = 12.5 ms
+  EXPECT_EQ(QuickPasses::drag_stride(5.0, 512, 512), 4);    // at most 4
+  EXPECT_EQ(QuickPasses::drag_stride(0.2, 510, 510), 3);    // 4 does not divide 510
+  EXPECT_EQ(QuickPasses::drag_stride(0.2, 511, 512), 1);    // nothing divides 511 and 512
 }
 
 TEST(Progressive, QuickPassesOnlyWhenTheyAreCheaper) {

@@ -72,6 +72,9 @@ struct Snapshot {
   // A quick pass's image (ProgressiveRenderer::set_preview: one path per
   // sample, shown in the first moments after an edit), never a render's.
   bool preview = false;
+  // A quick pass rendered while dragging (ProgressiveRenderer::set_dragging):
+  // each of its pixels covers stride x stride pixels of the image.
+  int stride = 1;
   std::size_t triangles = 0;  // the scene's geometry, for display
   std::size_t bvh_nodes = 0;
 

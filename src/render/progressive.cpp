@@ -17,6 +17,7 @@
 #include "scene/world.h"
 #include "render/camera.h"
 #include "render/estimator.h"
+#include "render/quick_passes.h"
 #include "render/sampler.h"
 
 namespace whisker {
@@ -38,21 +39,19 @@ struct ProgressiveRenderer::Job {
   World world;
   std::unique_ptr<CameraFrame> cam;
   std::uint64_t generation = 0;  // 0: nothing adopted yet
-  int width = 0, height = 0, tiles_x = 0, tiles_y = 0;
+  int width = 0, height = 0;
   Film film;
+  bool film_stale = false;  // film holds an older generation's sums
   bool preview_pass = false;
-  // Quick passes (set_preview): their own scene settings, film and counts.
-  Scene quick_scene;
-  Film quick_film;
+  QuickPasses quick;  // set_preview
   bool exact = false;  // deterministic_estimate(scene)
-  bool quick_active = false;  // this generation may still run quick passes
-  std::uint64_t quick_spp = 0;
-  double quick_seconds = 0.0;
   std::uint64_t spp_done = 0;
   RenderCounters counters;
   std::uint64_t first_sample = 0;  // sample index of the generation's first sample
 
   // this pass
+  const CameraFrame* pass_cam = nullptr;
+  int pass_width = 0, pass_height = 0, pass_tiles_x = 0, pass_tiles_y = 0;
   std::uint64_t sample_base = 0;
   int pass_spp = 0;
   Clock::time_point pass_start;
@@ -255,6 +254,7 @@ void ProgressiveRenderer::worker_main(int index) {
       } catch (const std::bad_alloc&) {
         out_of_memory("publishing a pass");
       }
+      if (on_publish_ && !job.aborted) on_publish_();
     }
   }
 }
@@ -291,35 +291,36 @@ bool ProgressiveRenderer::begin_pass() {
     job.cam = std::make_unique<CameraFrame>(job.scene.camera);
     job.width = job.scene.camera.width;
     job.height = job.scene.camera.height;
-    job.tiles_x = (job.width + kTile - 1) / kTile;
-    job.tiles_y = (job.height + kTile - 1) / kTile;
     job.spp_done = 0;
     job.counters = {};
     job.preview_pass = false;
     job.exact = deterministic_estimate(job.scene);
-    job.film.reset(job.width, job.height);
-    job.quick_active = preview_enabled_ && !start.resume && cheap_differs(job.scene.settings);
-    job.quick_spp = 0;
-    job.quick_seconds = 0.0;
-    if (job.quick_active) {
-      job.quick_scene = job.scene;
-      job.quick_scene.settings = cheap_settings(job.scene.settings);
-      job.quick_film.reset(job.width, job.height);
-    }
+    // The film is cleared when the generation's own first pass begins: a
+    // drag adopts a generation per quick pass and may never reach one.
+    job.film_stale = true;
+    job.quick.begin_generation(job.scene, preview_enabled_ && !start.resume);
     adopt_start(start);
   } else {
     lock.unlock();
   }
-  // Quick passes first, for kQuickSeconds; then the generation's own.
-  if (job.quick_active && (job.quick_seconds >= kQuickSeconds || job.spp_done > 0))
-    job.quick_active = false;
-  job.preview_pass = job.quick_active;
+  // Quick passes first, then the generation's own.
+  job.preview_pass = job.quick.next_is_quick(job.spp_done);
+  if (job.preview_pass) job.quick.set_up(dragging_);
+  if (!job.preview_pass && job.film_stale) {
+    job.film.reset(job.width, job.height);
+    job.film_stale = false;
+  }
+  job.pass_cam = job.preview_pass ? &job.quick.camera(*job.cam) : job.cam.get();
+  job.pass_width = job.pass_cam->width;
+  job.pass_height = job.pass_cam->height;
+  job.pass_tiles_x = (job.pass_width + kTile - 1) / kTile;
+  job.pass_tiles_y = (job.pass_height + kTile - 1) / kTile;
   const RenderSettings& s = job.scene.settings;
   int spp = job.preview_pass ? 1 : std::max(1, s.spp);
   if (s.target_spp > 0 && !job.preview_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   job.pass_spp = spp;
-  job.sample_base = job.preview_pass ? job.quick_spp : job.first_sample + job.spp_done;
+  job.sample_base = job.preview_pass ? job.quick.next_sample() : job.first_sample + job.spp_done;
   job.next_tile = 0;
   job.pass_nans = 0;
   job.pass_rays = 0;
@@ -327,7 +328,7 @@ bool ProgressiveRenderer::begin_pass() {
   job.pass_start = Clock::now();
   progress_generation_ = job.generation;
   progress_tiles_done_ = 0;
-  progress_tiles_total_ = job.tiles_x * job.tiles_y;
+  progress_tiles_total_ = job.pass_tiles_x * job.pass_tiles_y;
   progress_spp_ = job.preview_pass ? 0 : spp;
   progress_start_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
                            job.pass_start.time_since_epoch()).count();
@@ -342,6 +343,8 @@ void ProgressiveRenderer::adopt_start(const RenderStart& start) {
   // The resumed part's sums, counters and samples, as if its passes had
   // just run here: the next pass adds onto them exactly as it would have.
   const Accumulation& a = *start.resume;
+  job.film.reset(job.width, job.height);
+  job.film_stale = false;
   job.film.load(a.sum, a.sum_sq);
   job.spp_done = a.samples();
   job.counters = a.counters;
@@ -356,22 +359,22 @@ bool ProgressiveRenderer::abandoning() const {
 
 void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
-  const int tiles = job.tiles_x * job.tiles_y;
+  const int tiles = job.pass_tiles_x * job.pass_tiles_y;
   for (;;) {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
     if (abandoning()) job.aborted = true;
     if (job.aborted) break;
-    const int ty = tile / job.tiles_x, tx = tile % job.tiles_x;
+    const int ty = tile / job.pass_tiles_x, tx = tile % job.pass_tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
-    const int i1 = std::min(job.height, i0 + kTile), j1 = std::min(job.width, j0 + kTile);
+    const int i1 = std::min(job.pass_height, i0 + kTile), j1 = std::min(job.pass_width, j0 + kTile);
     PathStats stats;
-    const Scene& scene = job.preview_pass ? job.quick_scene : job.scene;
-    Film& film = job.preview_pass ? job.quick_film : job.film;
+    const Scene& scene = job.preview_pass ? job.quick.scene() : job.scene;
+    Film& film = job.preview_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
     const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); }};
-    const TileResult r = render_tile(ctx, *job.cam, work, film);
+    const TileResult r = render_tile(ctx, *job.pass_cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published
       job.aborted = true;
       break;
@@ -387,18 +390,9 @@ void ProgressiveRenderer::end_pass() {
   if (job.aborted) return;
   if (job.preview_pass) {
     // A quick pass: its own film and counts, published beside the real ones.
-    job.quick_spp += 1;
-    job.quick_seconds += std::chrono::duration<double>(Clock::now() - job.pass_start).count();
+    const double seconds = std::chrono::duration<double>(Clock::now() - job.pass_start).count();
     std::lock_guard lock(publish_mutex_);
-    Snapshot& q = quick_published_;
-    job.quick_film.publish(q);
-    q.spp = job.quick_spp;
-    q.first_sample = 0;
-    q.generation = job.generation;
-    q.version += 1;
-    q.counters = {.passes = job.quick_spp, .seconds = job.quick_seconds};
-    q.done = false;
-    q.preview = true;
+    job.quick.publish(seconds, job.generation, quick_published_);
     publish_cv_.notify_all();
     return;
   }

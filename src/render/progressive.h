@@ -6,6 +6,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -71,18 +72,27 @@ class ProgressiveRenderer {
   void set_paused(bool paused);
   bool paused() const { return paused_.load(); }
   void set_threads(int threads);  // restarts the pool if running
-  // Quick passes (the viewer's): for the first moments of every new
-  // generation (kQuickSeconds of them, before its first full pass) run
-  // cheap passes of one path per sample, no splitting, no path reuse and one
-  // sample per pass, into a film of their own published by quick_snapshot(),
-  // so an edit shows at full resolution at once. They never touch the
-  // generation's own accumulation (snapshot() stays what headless renders),
-  // and a quick pass is not abandoned by a newer edit, so a drag shows
-  // images as fast as quick passes land. Off by default.
+  // Quick passes (the viewer's, render/quick_passes.h): for the first
+  // moments of every new generation (QuickPasses::kSeconds of them, before
+  // its first full pass) run cheap passes of one path per sample, no
+  // splitting, no path reuse and one sample per pass, into a film of their
+  // own published by quick_snapshot(), so an edit shows at full resolution
+  // at once. They never touch the generation's own accumulation (snapshot()
+  // stays what headless renders), and a quick pass is not abandoned by a
+  // newer edit, so a drag shows images as fast as quick passes land. Off by
+  // default.
   void set_preview(bool on) { preview_enabled_ = on; }
-  static constexpr double kQuickSeconds = 0.4;
-  // Quick passes use the cheap estimator (estimator.h: cheap_settings) when
-  // it differs from the settings' own (cheap_differs).
+  // While the user drags (a camera orbit, a slider), edits come faster than
+  // full-resolution quick passes: the quick passes then render one path per
+  // stride x stride pixels (Snapshot::stride; QuickPasses::drag_stride). A
+  // coarse pass is shown alone, never combined with full-resolution ones;
+  // when the drag ends the quick passes go back to full resolution.
+  // Thread-safe.
+  void set_dragging(bool on) { dragging_ = on; }
+  // Called by a worker after each pass it publishes (own or quick), outside
+  // the renderer's locks: a window wakes its event loop with it. Set before
+  // start().
+  void set_on_publish(std::function<void()> f) { on_publish_ = std::move(f); }
   // The latest quick pass's film (its generation, spp = quick samples),
   // copied if its version differs from out.version. Never waits.
   bool quick_snapshot(Snapshot& out) const;
@@ -125,6 +135,8 @@ class ProgressiveRenderer {
   std::atomic<bool> paused_{false};
   std::atomic<bool> running_{false};
   std::atomic<bool> preview_enabled_{false};
+  std::atomic<bool> dragging_{false};
+  std::function<void()> on_publish_;
   std::atomic<bool> stop_when_exact_{false};
   bool low_priority_ = false;
   // pending state, guarded by pending_mutex_

@@ -152,6 +152,7 @@ void Display::upload(const Snapshot& s, bool with_sq) {
   }
   width_ = s.width;
   height_ = s.height;
+  stride_ = std::max(1, s.stride);
   cache_valid_ = false;
 }
 
@@ -173,13 +174,16 @@ void Display::draw_columns(const PixelRect& area, int framebuffer_height, float 
   if (c1 <= c0) return;
   const int x0 = area.x + int(std::lround(double(c0) * area.w / cache_w_));
   const int x1 = area.x + int(std::lround(double(c1) * area.w / cache_w_));
-  // Magnified or 1:1 pixels stay crisp; a reduced image is filtered.
+  // Magnified or 1:1 pixels stay crisp; a reduced image is filtered, and so
+  // is a coarse quick pass's (its texels are not the image's pixels: drawn
+  // as blocks they would be a mosaic).
   const int y0 = framebuffer_height - area.y - area.h;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
   glDisable(GL_SCISSOR_TEST);
   glBlitFramebuffer(c0, 0, c1, cache_h_, x0, y0, x1, y0 + area.h,
-                    GL_COLOR_BUFFER_BIT, area.w < cache_w_ ? GL_LINEAR : GL_NEAREST);
+                    GL_COLOR_BUFFER_BIT,
+                    area.w < cache_w_ || stride_ > 1 ? GL_LINEAR : GL_NEAREST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 

@@ -41,8 +41,10 @@ class Display {
   void draw_columns(const PixelRect& area, int framebuffer_height, float spp,
                     const DisplayParams& p, float from, float to);
 
-  int width() const { return width_; }
-  int height() const { return height_; }
+  // The image's size in its own pixels: a coarse quick pass's texels
+  // (Snapshot::stride) are stride x stride of them.
+  int width() const { return width_ * stride_; }
+  int height() const { return height_ * stride_; }
   bool has_sq() const { return sq_valid_; }
 
  private:
@@ -50,7 +52,8 @@ class Display {
 
   unsigned program_ = 0, vao_ = 0, tex_ = 0, tex_sq_ = 0;
   unsigned fbo_ = 0, cache_ = 0;  // the mapped image, RGBA8, image size
-  int width_ = 0, height_ = 0;
+  int width_ = 0, height_ = 0;  // of the texture
+  int stride_ = 1;              // image pixels per texel, each way
   int cache_w_ = 0, cache_h_ = 0;
   bool sq_valid_ = false;
   // The sums rounded to float on their way to a texture, kept between

@@ -156,6 +156,9 @@ struct Session {
     map_keys(read_keys(), imgui_wants_keyboard(), req);
     req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
     req.editing = ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown();
+    // A held mouse button (an orbit, a slider) makes edits faster than
+    // full-resolution quick passes: coarse ones follow it (set_dragging).
+    renderer.set_dragging(ImGui::IsAnyMouseDown());
     const std::string dropped = take_dropped_file();
     if (!dropped.empty()) {
       std::string error;
@@ -392,6 +395,8 @@ int run_viewer(const ViewerOptions& opt) {
   // its --frames passes, as the headless mode with --frames does.
   renderer.set_stop_when_exact(opt.frames <= 0);
   renderer.set_low_priority(true);  // the UI thread shares the two cores
+  // A published pass wakes the event loop at once, not at its next check.
+  renderer.set_on_publish([] { glfwPostEmptyEvent(); });
   s.generation = renderer.set_scene(s.applied);
   renderer.start();
   s.last_change = glfwGetTime();

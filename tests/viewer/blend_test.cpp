@@ -41,3 +41,33 @@ TEST(Blend, QuickThenCombinedThenTheOwnPassesAlone) {
   EXPECT_EQ(out.quick_spp, 0u);
   EXPECT_EQ(out.image.sum, own.sum);
 }
+
+// A drag's coarse quick pass (Snapshot::stride 2, half the size) is shown
+// while its generation has no pass of its own, and never combined with one.
+TEST(Blend, CoarseQuickPassShownAloneNeverCombined) {
+  RenderSettings st;
+  st.indirect = true;
+  st.split = {4, 2};
+  Snapshot own, quick;
+  own.width = 2;
+  own.height = 2;
+  quick.width = quick.height = 1;
+  quick.stride = 2;
+  quick.generation = own.generation = 3;
+  quick.spp = 1;
+  quick.sum = {1.0f, 1.0f, 1.0f};
+  own.spp = 0;
+  own.sum.assign(12, 0.0f);
+  Shown out;
+  blend_for_display(own, quick, st, out);
+  EXPECT_EQ(out.image.stride, 2);
+  EXPECT_EQ(out.image.width, 1);
+  EXPECT_EQ(out.quick_spp, 1u);
+  own.spp = 1;  // the own first pass: shown alone, full size
+  own.sum.assign(12, 5.0f);
+  blend_for_display(own, quick, st, out);
+  EXPECT_EQ(out.image.stride, 1);
+  EXPECT_EQ(out.image.width, 2);
+  EXPECT_EQ(out.quick_spp, 0u);
+  EXPECT_EQ(out.image.sum, own.sum);
+}

@@ -1,0 +1,65 @@
+#include "render/quick_passes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/estimator.h"
+
+namespace whisker {
+
+int QuickPasses::drag_stride(double full_pass_seconds, int width, int height) {
+  // A pass's time goes with its pixel count, 1 / stride^2.
+  int stride = 2;
+  if (full_pass_seconds > 0.0) stride = int(std::ceil(std::sqrt(full_pass_seconds / kDragPassSeconds)));
+  stride = std::clamp(stride, 1, 4);
+  while (stride > 1 && (width % stride != 0 || height % stride != 0)) --stride;
+  return stride;
+}
+
+void QuickPasses::begin_generation(const Scene& scene, bool enabled) {
+  active_ = enabled && cheap_differs(scene.settings);
+  stride_ = 0;
+  spp_ = 0;
+  seconds_ = 0.0;
+  if (!active_) return;
+  scene_ = scene;
+  scene_.settings = cheap_settings(scene.settings);
+}
+
+bool QuickPasses::next_is_quick(std::uint64_t own_spp) {
+  if (active_ && (seconds_ >= kSeconds || own_spp > 0)) active_ = false;
+  return active_;
+}
+
+void QuickPasses::set_up(bool dragging) {
+  const Camera& c = scene_.camera;
+  const int stride = dragging ? drag_stride(full_pass_seconds_, c.width, c.height) : 1;
+  if (stride == stride_) return;
+  stride_ = stride;
+  spp_ = 0;
+  seconds_ = 0.0;
+  if (stride > 1) {
+    Camera coarse = c;  // the same image plane, stride times fewer pixels each way
+    coarse.width /= stride;
+    coarse.height /= stride;
+    cam_ = std::make_unique<CameraFrame>(coarse);
+  }
+  film_.reset(c.width / stride, c.height / stride);
+}
+
+void QuickPasses::publish(double seconds, std::uint64_t generation, Snapshot& q) {
+  spp_ += 1;
+  seconds_ += seconds;
+  if (stride_ == 1) full_pass_seconds_ = seconds;
+  film_.publish(q);
+  q.spp = spp_;
+  q.first_sample = 0;
+  q.generation = generation;
+  q.version += 1;
+  q.counters = {.passes = spp_, .seconds = seconds_};
+  q.done = false;
+  q.preview = true;
+  q.stride = stride_;
+}
+
+}  // namespace whisker
