@@ -38,18 +38,27 @@ static bool read_text(const fs::path& path, std::string& out) {
   return true;
 }
 
+// Whether a shader compiled or a program linked (`status`); if not, `error`
+// is `prefix` and GL's log.
+template <class GetIv, class GetLog>
+static bool gl_ok(GLuint object, GetIv get_iv, GLenum status, GetLog get_log,
+                  const std::string& prefix, std::string& error) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return true;
+  char log[2048] = {};
+  get_log(object, sizeof log, nullptr, log);
+  error = prefix + log;
+  return false;
+}
+
 static GLuint compile(GLenum type, const std::string& src, const std::string& name,
                       std::string& error) {
   GLuint sh = glCreateShader(type);
   const char* text = src.c_str();
   glShaderSource(sh, 1, &text, nullptr);
   glCompileShader(sh);
-  GLint ok = 0;
-  glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-    error = name + ": " + log;
+  if (!gl_ok(sh, glGetShaderiv, GL_COMPILE_STATUS, glGetShaderInfoLog, name + ": ", error)) {
     glDeleteShader(sh);
     return 0;
   }
@@ -82,14 +91,9 @@ bool Display::init(std::string& error) {
   glLinkProgram(program_);
   glDeleteShader(vs);
   glDeleteShader(fsh);
-  GLint ok = 0;
-  glGetProgramiv(program_, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program_, sizeof log, nullptr, log);
-    error = std::string("display shaders: ") + log;
+  if (!gl_ok(program_, glGetProgramiv, GL_LINK_STATUS, glGetProgramInfoLog, "display shaders: ",
+             error))
     return false;
-  }
   loc_spp_ = glGetUniformLocation(program_, "spp");
   loc_exposure_ = glGetUniformLocation(program_, "exposure");
   loc_gamma_ = glGetUniformLocation(program_, "gamma");

@@ -10,20 +10,15 @@ void EditHistory::changed(const Scene& before) {
   open_ = true;
 }
 
-bool EditHistory::undo(Scene& scene) {
-  if (undo_.empty()) return false;
-  redo_.push_back(scene);
-  scene = undo_.back();
-  undo_.pop_back();
-  open_ = false;
-  return true;
-}
+bool EditHistory::undo(Scene& scene) { return step(undo_, redo_, scene); }
 
-bool EditHistory::redo(Scene& scene) {
-  if (redo_.empty()) return false;
-  undo_.push_back(scene);
-  scene = redo_.back();
-  redo_.pop_back();
+bool EditHistory::redo(Scene& scene) { return step(redo_, undo_, scene); }
+
+bool EditHistory::step(std::vector<Scene>& from, std::vector<Scene>& to, Scene& scene) {
+  if (from.empty()) return false;
+  to.push_back(scene);
+  scene = from.back();
+  from.pop_back();
   open_ = false;
   return true;
 }

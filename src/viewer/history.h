@@ -29,6 +29,8 @@ class EditHistory {
   static constexpr std::size_t kLimit = 200;
 
  private:
+  // Undo and redo: `scene` goes on `to`, the top of `from` replaces it.
+  bool step(std::vector<Scene>& from, std::vector<Scene>& to, Scene& scene);
   std::vector<Scene> undo_, redo_;
   bool open_ = false;
 };
