@@ -49,7 +49,8 @@ sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$|^Faults\.scene
 # The hard cases too: each is single renders through the same threaded code
 # as the Headless.* tests, checked for numbers (ASan + UBSan run them). So
 # are the shard and command-line suites (processes, files and merges around
-# the same renderer).
+# the same renderer). The test files holding only such suites are not even
+# built under TSan (tests/CMakeLists.txt).
 tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase|Shards|CommandLineE2E)\."
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
