@@ -185,8 +185,10 @@ TEST_F(CommandLineE2E, ExtensionsInAnyCase) {
 
 TEST_F(CommandLineE2E, ProgressLinesWhenStderrIsALog) {
   // stderr is a file: plain lines every --progress seconds, each with the
-  // samples done of the target, the time elapsed and the time left.
-  const Outcome r = run("--headless --scene " + scene(128, 128, 16, 1) +
+  // samples done of the target, the time elapsed and the time left. The
+  // render must outlast the rate's first 0.2 s by a few lines (about 1 s
+  // in Release; at 128 x 128 it once finished in 0.25 s, with no rate yet).
+  const Outcome r = run("--headless --scene " + scene(256, 256, 16, 1) +
                         " --frames 30 --progress 0.1 --out " + f("a.png"));
   ASSERT_EQ(r.code, 0) << r.err;
   std::istringstream lines(r.err);
