@@ -172,6 +172,19 @@ viewer_test_setup() {  # BINARY tools...
   [ -x "$py" ] || py=python3
 }
 
+# Whether a client can connect to display :$1 (within about 5 s).
+x_answers() {
+  local k probe=()
+  if command -v xdpyinfo >/dev/null; then probe=(xdpyinfo)
+  elif command -v xdotool >/dev/null; then probe=(xdotool getdisplaygeometry)
+  else return 0; fi
+  for k in $(seq 50); do
+    DISPLAY=:$1 "${probe[@]}" >/dev/null 2>&1 && return 0
+    sleep 0.1
+  done
+  return 1
+}
+
 # Runs "$dir/drive.sh" in a fresh X server (1280x800) with these helpers,
 # for at most SECONDS (default 300). The server picks a free display number
 # itself (-displayfd), so tests started at once, here or from other
@@ -186,9 +199,13 @@ in_xvfb() {  # [seconds]
       [ -n "$display" ] || ! kill -0 "$xpid" 2>/dev/null && break
       sleep 0.1
     done
-    [ -n "$display" ] && break
+    # A server is only taken once a client gets through: one that took the
+    # display number of a server exiting at that moment can lose its
+    # socket to the old server's clean-up ("Failed to open display").
+    [ -n "$display" ] && x_answers "$display" && break
     kill "$xpid" 2>/dev/null
     wait "$xpid" 2>/dev/null
+    display=
   done
   if [ -z "$display" ]; then
     echo "Xvfb did not start:"; cat "$dir/xvfb.err"; fail=1; return 1
