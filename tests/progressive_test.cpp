@@ -17,12 +17,8 @@ namespace {
 
 // The three balls with everything random switched on, small enough to be quick.
 Scene small_scene(int spp_per_pass, int target) {
-  Scene s = load_scene(resolve_scene("three-balls"));
-  s.camera.width = 48;
-  s.camera.height = 40;
+  Scene s = sized("three-balls", 48, 40, spp_per_pass, target);
   s.settings.indirect = s.settings.fresnel = s.settings.aa = true;
-  s.settings.spp = spp_per_pass;
-  s.settings.target_spp = target;
   s.settings.seed = 42;
   return s;
 }
@@ -128,12 +124,9 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   // whole passes of one path per sample, published apart from the
   // generation's own, pixel for pixel what a render with the quick settings
   // gives (no blocks, no mosaic).
-  Scene scene = load_scene(resolve_scene("indirect"));
-  scene.camera.width = 96;
-  scene.camera.height = 80;
+  Scene scene = sized("indirect", 96, 80, 1, 2);
   scene.settings.split = {4, 4};
   scene.settings.reuse = 4;
-  scene.settings.target_spp = 2;
   ASSERT_TRUE(cheap_differs(scene.settings));
   ProgressiveRenderer r(1);
   r.set_preview(true);
@@ -169,11 +162,8 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
 // quick settings at half the size, flagged with its stride. An edit made
 // after the drag gets full-size quick passes again.
 TEST(Progressive, QuickPassesWhileDraggingAreCoarseThenFullSize) {
-  Scene scene = load_scene(resolve_scene("indirect"));
-  scene.camera.width = 96;
-  scene.camera.height = 80;
+  Scene scene = sized("indirect", 96, 80, 1, 2);
   scene.settings.split = {4, 4};
-  scene.settings.target_spp = 2;
   ProgressiveRenderer r(1);
   r.set_preview(true);
   r.set_dragging(true);  // before the first pass: no full-size pass timed yet
@@ -281,12 +271,8 @@ TEST(Progressive, QuickPassesAreNeverAccumulated) {
 // generation, and the result is the same image as a render to the higher
 // target from the start (samples are indexed, so nothing repeats).
 TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
-  Scene s = load_scene(resolve_scene("three-balls"));
-  s.camera.width = 40;
-  s.camera.height = 32;
+  Scene s = sized("three-balls", 40, 32, 2, 4);
   s.settings.indirect = s.settings.aa = true;
-  s.settings.spp = 2;
-  s.settings.target_spp = 4;
 
   ProgressiveRenderer r(2);
   const std::uint64_t gen = r.set_scene(s);
@@ -313,11 +299,7 @@ TEST(TargetSpp, RaisingTheTargetContinuesTheAccumulation) {
 
 // A pass reports its tiles as they finish; between passes nothing runs.
 TEST(TargetSpp, PassProgressCountsTiles) {
-  Scene s = load_scene(resolve_scene("three-balls"));
-  s.camera.width = 70;  // 3 x 2 tiles of 32
-  s.camera.height = 40;
-  s.settings.spp = 1;
-  s.settings.target_spp = 2;
+  Scene s = sized("three-balls", 70, 40, 1, 2);  // 3 x 2 tiles of 32
   ProgressiveRenderer r(1);
   const std::uint64_t gen = r.set_scene(s);
   r.start();
@@ -335,11 +317,7 @@ TEST(TargetSpp, PassProgressCountsTiles) {
 
 // During a long pass the tiles done climb before the pass publishes.
 TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
-  Scene s = load_scene(resolve_scene("three-balls"));
-  s.camera.width = 64;  // 2 x 2 tiles
-  s.camera.height = 64;
-  s.settings.spp = 300;
-  s.settings.target_spp = 300;
+  Scene s = sized("three-balls", 64, 64, 300, 300);  // 2 x 2 tiles
   ProgressiveRenderer r(1);
   const std::uint64_t gen = r.set_scene(s);
   r.start();

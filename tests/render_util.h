@@ -9,8 +9,19 @@
 #include <vector>
 
 #include "render/progressive.h"
+#include "scene/scene_io.h"
 
 namespace whisker {
+
+// A bundled scene at a small size, with its samples per pass and target.
+inline Scene sized(const char* name, int width, int height, int spp_per_pass, int target) {
+  Scene s = load_scene(resolve_scene(name));
+  s.camera.width = width;
+  s.camera.height = height;
+  s.settings.spp = spp_per_pass;
+  s.settings.target_spp = target;
+  return s;
+}
 
 inline Snapshot render(const Scene& scene, int threads = 0) {
   ProgressiveRenderer r(threads);

@@ -146,11 +146,7 @@ TEST(SaveImage, FloatFileRecordsTheRenderAndCanBeDisplayReferred) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("whisker-save-image-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  Scene scene = load_scene(resolve_scene("three-balls"));
-  scene.camera.width = 24;
-  scene.camera.height = 16;
-  scene.settings.spp = 2;
-  scene.settings.target_spp = 2;
+  Scene scene = sized("three-balls", 24, 16, 2, 2);
   scene.settings.seed = 9;
   ProgressiveRenderer r(1);
   ViewerState s;
@@ -196,10 +192,7 @@ TEST(SaveImage, FloatFileRecordsTheRenderAndCanBeDisplayReferred) {
 // A/B: "Hold this image" keeps the image and its settings and turns the
 // wipe on; an edit restarts the live render and leaves the held one alone.
 TEST(Compare, HoldKeepsTheImageThroughAnEdit) {
-  Scene scene = load_scene(resolve_scene("three-balls"));
-  scene.camera.width = 16;
-  scene.camera.height = 16;
-  scene.settings.target_spp = 2;
+  Scene scene = sized("three-balls", 16, 16, 1, 2);
   ProgressiveRenderer r(1);
   ViewerState s;
   s.initial = s.applied = s.edited = scene;
