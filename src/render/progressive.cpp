@@ -51,7 +51,7 @@ struct ProgressiveRenderer::Job {
 
   // this pass
   const CameraFrame* pass_cam = nullptr;
-  int pass_width = 0, pass_height = 0, pass_tiles_x = 0, pass_tiles_y = 0;
+  int pass_tiles_x = 0, pass_tiles_y = 0;  // of the pass camera's image
   std::uint64_t sample_base = 0;
   int pass_spp = 0;
   Clock::time_point pass_start;
@@ -311,10 +311,8 @@ bool ProgressiveRenderer::begin_pass() {
     job.film_stale = false;
   }
   job.pass_cam = job.preview_pass ? &job.quick.camera(*job.cam) : job.cam.get();
-  job.pass_width = job.pass_cam->width;
-  job.pass_height = job.pass_cam->height;
-  job.pass_tiles_x = (job.pass_width + kTile - 1) / kTile;
-  job.pass_tiles_y = (job.pass_height + kTile - 1) / kTile;
+  job.pass_tiles_x = (job.pass_cam->width + kTile - 1) / kTile;
+  job.pass_tiles_y = (job.pass_cam->height + kTile - 1) / kTile;
   const RenderSettings& s = job.scene.settings;
   int spp = job.preview_pass ? 1 : std::max(1, s.spp);
   if (s.target_spp > 0 && !job.preview_pass)
@@ -368,13 +366,14 @@ void ProgressiveRenderer::run_tiles() {
     if (job.aborted) break;
     const int ty = tile / job.pass_tiles_x, tx = tile % job.pass_tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
-    const int i1 = std::min(job.pass_height, i0 + kTile), j1 = std::min(job.pass_width, j0 + kTile);
+    const CameraFrame& cam = *job.pass_cam;
+    const int i1 = std::min(cam.height, i0 + kTile), j1 = std::min(cam.width, j0 + kTile);
     PathStats stats;
     const Scene& scene = job.preview_pass ? job.quick.scene() : job.scene;
     Film& film = job.preview_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
     const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); }};
-    const TileResult r = render_tile(ctx, *job.pass_cam, work, film);
+    const TileResult r = render_tile(ctx, cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published
       job.aborted = true;
       break;
