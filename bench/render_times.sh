@@ -27,7 +27,7 @@ row() {  # name, runs, whisker options...
   for ((k = 0; k < n; k++)); do
     # One path per sample and pixel (--split 1, no path reuse), as the
     # report's program: the figures compare with its times per sample.
-    "$bin" --headless --quiet --split 1 --reuse 1 "$@" --stats "$out/s.json" >/dev/null
+    "$bin" --headless --quiet --split 1 --reuse 1 --connect off "$@" --stats "$out/s.json" >/dev/null
     secs+=("$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["seconds"])' "$out/s.json")")
   done
   local med

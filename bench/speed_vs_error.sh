@@ -65,7 +65,7 @@ SCENE_DIR=$OUT/scenes
 no_timer() { shift; "$@"; }
 TIMER=(/usr/bin/time -f "%U %S" -o)
 [ -x /usr/bin/time ] || TIMER=(no_timer)
-REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1 --split-weights 1,1,1 --reuse 1)
+REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1 --split-weights 1,1,1 --reuse 1 --connect off)
 # Whisker best: the defaults, or BEST_FLAGS (e.g. "--split 1" for the
 # single-path estimator the table in docs/PERFORMANCE.md was measured with).
 read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"

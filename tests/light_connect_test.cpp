@@ -54,8 +54,10 @@ TEST(LightConnect, WeightsOfOnePathSumToOne) {
     const float d2 = glm::dot(to_light, to_light);
     const float cos_l = glm::dot(ny, to_light) / std::sqrt(d2);
     for (int n : {1, 2, 4, 16}) {
+      // The light cache's density factor M / M_c (light_cache.h).
+      const float scale = n == 2 ? 3.5f : 1.0f;
       // The bounce's side: a ray from x along w meets y at distance r.
-      const Departure from = departure(FacingNormals(nx, nx), w, n);
+      const Departure from = departure(FacingNormals(nx, nx), w, n, scale);
       SurfaceHit y;
       y.t = std::sqrt(r2);
       y.ng = ny;
@@ -67,7 +69,7 @@ TEST(LightConnect, WeightsOfOnePathSumToOne) {
       // The light path's side, as light_connection forms it.
       const float A = glm::dot(nx, w) * -glm::dot(ny, w) / r2;
       const float B = cos_l / (4.0f * d2);
-      const float wl = light_path_factor(float(n), A, B) * (B / A);
+      const float wl = light_path_factor(float(n), A, scale * B) * (scale * B / A);
       EXPECT_NEAR(wb + wl, 1.0f, 1e-5f) << k << " n " << n;
       // A = pi p_b (cos_x / pi cos_y / r^2), B = pi p_l (cos_l / (4 pi d^2)).
       const double pb = glm::dot(glm::dvec3(nx), glm::dvec3(w)) / kPi * glm::dot(glm::dvec3(ny), -glm::dvec3(w)) / double(r2);

@@ -336,3 +336,18 @@ TEST(TargetSpp, PassProgressClimbsDuringALongPass) {
   r.stop();
   EXPECT_TRUE(seen_midway);
 }
+
+// Light connections: their caches are built by all the threads, one per
+// sample, and each depends on its sample only, so the image is the same
+// whatever the thread count; a pass holds at most 16 samples' caches, so a
+// long pass is cut into passes of 16 (its memory bounded whatever --spp).
+TEST(Progressive, LightConnectionsSameImageForAnyThreadCount) {
+  Scene scene = sized("cat", 24, 20, 40, 40);
+  scene.settings.connect = true;
+  const Snapshot one = render(scene, 1);
+  const Snapshot two = render(scene, 2);
+  ASSERT_EQ(one.spp, 40u);
+  EXPECT_EQ(one.sum, two.sum);  // bit-identical
+  EXPECT_EQ(one.counters.passes, 3u);  // 16 + 16 + 8
+  EXPECT_EQ(two.counters.passes, 3u);
+}

@@ -1,6 +1,7 @@
 #include "render/estimator.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace whisker {
 
@@ -30,6 +31,8 @@ RenderSettings cheap_settings(const RenderSettings& s) {
   q.split = {1};
   q.split_weights = vec3(1.0f);
   q.reuse = 1;
+  // Light connections need the light cache a quick pass does not build.
+  q.connect = false;
   // The cheapest numbers: a quick pass is one sample per pixel, where the
   // Sobol points' stratification over a pixel's samples has little to give,
   // and drawing them costs about 8 % of the pass on the cat.
@@ -39,11 +42,51 @@ RenderSettings cheap_settings(const RenderSettings& s) {
   return q;
 }
 
+namespace {
+
+// render_tile() with light caches and one pixel per block: the samples in
+// the outer loop, so that a thread reads one sample's cache at a time (a
+// pass's caches together outgrow the processor's caches, and a connection
+// that misses them waits longer than its shadow ray takes). Each pixel still
+// adds its samples in order: the same sums as the pixel-major loop.
+TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
+                                 const TileWork& tile, Film& film) {
+  const RenderSettings& s = ctx.settings;
+  const PixelBlock& t = tile.pixels;
+  const int cols = t.j1 - t.j0, pixels = (t.i1 - t.i0) * cols;
+  TileResult result;
+  const FlushDenormals ftz;
+  std::vector<PixelSum> sums(static_cast<std::size_t>(pixels));
+  for (int k = 0; k < tile.spp; ++k) {
+    if (tile.abandon && tile.abandon()) {
+      result.abandoned = true;
+      return result;
+    }
+    const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
+    PathContext sample_ctx = ctx;
+    sample_ctx.lights = &tile.light_caches[k];
+    for (int p = 0; p < pixels; ++p) {
+      const Pixel px{t.i0 + p / cols, t.j0 + p % cols};
+      Sampler sampler = pixel_sampler(s, cam, px, sample);
+      sums[std::size_t(p)].add(sample_pixel(sample_ctx, cam, px, sampler), sample);
+    }
+  }
+  for (int p = 0; p < pixels; ++p) {
+    const int i = t.i0 + p / cols, j = t.j0 + p % cols;
+    film.add(std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j), sums[std::size_t(p)]);
+    result.dropped += sums[std::size_t(p)].dropped;
+  }
+  return result;
+}
+
+}  // namespace
+
 TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
                        Film& film) {
   const RenderSettings& s = ctx.settings;
   const PixelBlock& t = tile.pixels;
   const bool reuse = reuses_paths(s);
+  if (tile.light_caches && !reuse) return render_tile_by_sample(ctx, cam, tile, film);
   const int side = reuse ? std::min(s.reuse, kMaxReuse) : 1;
   TileResult result;
   const FlushDenormals ftz;
@@ -61,11 +104,13 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
           return result;
         }
         const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
+        PathContext sample_ctx = ctx;
+        if (tile.light_caches) sample_ctx.lights = &tile.light_caches[k];
         if (reuse) {
-          sample_block(ctx, cam, block, sample, out);
+          sample_block(sample_ctx, cam, block, sample, out);
         } else {  // one pixel
           Sampler sampler = pixel_sampler(s, cam, Pixel{bi, bj}, sample);
-          out[0] = sample_pixel(ctx, cam, Pixel{bi, bj}, sampler);
+          out[0] = sample_pixel(sample_ctx, cam, Pixel{bi, bj}, sampler);
         }
         for (int p = 0; p < pixels; ++p) sums[p].add(out[p], sample);
       }

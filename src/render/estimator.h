@@ -10,6 +10,7 @@
 #include "render/camera.h"
 #include "render/film.h"
 #include "render/integrator.h"
+#include "render/light_cache.h"
 #include "render/path_reuse.h"
 
 namespace whisker {
@@ -35,6 +36,9 @@ struct TileWork {
   std::uint64_t first_sample = 0;
   int spp = 0;
   std::function<bool()> abandon;
+  // Light connections' caches of samples first_sample.. (light_cache.h), or
+  // null: each connection then traces its own light path.
+  const LightCache* light_caches = nullptr;
 };
 
 struct TileResult {

@@ -67,30 +67,33 @@ DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const Surfac
 std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
                                   PathState& state, Sampler& sampler) {
   const RenderSettings& settings = ctx.settings;
+  const bool bounces = settings.indirect && state.depth != settings.max_depth;
+  // The light path is chosen first, so that a cached one is read from
+  // memory while the shadow ray and the bounces run.
+  const bool connect = settings.connect && bounces;
+  const LightPick pick = connect ? pick_light_path(ctx, state.beta, sampler) : LightPick{};
   const DirectLight direct = add_direct_light(ctx, in, h, state.beta, state.from);
   state.L += direct.L;
-  if (!settings.indirect || state.depth == settings.max_depth) return std::nullopt;
+  if (!bounces) return std::nullopt;
   const int split = split_factor(settings, state.diffuse_hits++, state.beta);
   const Frame frame(direct.n.ns);
-  const bool connect = settings.connect;
   if (split > 1) {
     vec3 sum(0.0f);
     for (int k = 0; k < split; ++k) {
       Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
       PathState b{sample_diffuse(h, frame, branch), state.beta, state.depth + 1,
                   state.diffuse_hits};
-      if (connect) b.from = departure(direct.n, b.ray.d, split);
+      if (connect) b.from = departure(direct.n, b.ray.d, split, pick.scale);
       sum += trace_path(ctx, b, branch);
     }
     state.L = state.L + sum / float(split);
-    // After the branches, so that they keep the numbers they draw without it.
-    if (connect) state.L += light_connection(ctx, {h, direct.n, state.beta, split}, sampler);
+    if (connect) state.L += light_connection(ctx, {h, direct.n, state.beta, split}, pick);
     return std::nullopt;
   }
   const Ray next = sample_diffuse(h, frame, sampler);
   if (connect) {
-    state.from = departure(direct.n, next.d, 1);
-    state.L += light_connection(ctx, {h, direct.n, state.beta, 1}, sampler);
+    state.from = departure(direct.n, next.d, 1, pick.scale);
+    state.L += light_connection(ctx, {h, direct.n, state.beta, 1}, pick);
   }
   return next;
 }

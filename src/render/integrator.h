@@ -25,10 +25,14 @@ struct PathStats {
 // What every path of a render shares: the compiled scene, the settings and
 // the counters (one per thread). Samplers are per path (splitting branches
 // them), so they travel beside it.
+class LightCache;
 struct PathContext {
   const World& world;
   const RenderSettings& settings;
   PathStats& stats;
+  // The light paths of this sample's connections (light_cache.h), or null:
+  // then each connection traces its own.
+  const LightCache* lights = nullptr;
 };
 
 // A pixel: row i from the top, column j.
@@ -43,6 +47,7 @@ struct Pixel {
 struct Departure {
   float cos = 0.0f;
   float count = 0.0f;
+  float light_scale = 1.0f;  // light paths' density factor (light_cache.h: M / M_c)
 };
 
 // A path's state where it continues: the ray it follows (render space), its

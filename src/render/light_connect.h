@@ -2,7 +2,11 @@
 // light, where x and y are diffuse and the point light shines on y. The
 // cosine bounce from x finds y and samples y's direct light; a light path
 // instead leaves the light in a direction uniform on the sphere, meets y
-// first, and is connected to x by a visibility ray. The two are combined by
+// first, and is connected to x by a visibility ray. The light paths are
+// traced once per sample and shared by the image's vertices (light_cache.h),
+// which scales their density by M / M_c (B below); without a cache (the
+// viewer's quick passes) no connection is made and the bounces weigh 1.
+// The two are combined by
 // the balance heuristic with sample counts (Veach, "Robust Monte Carlo
 // Methods for Light Transport Simulation", PhD thesis 1997, section 9.2):
 // n cosine bounces leave x (the split factor) and one light path.
@@ -15,7 +19,9 @@
 // With A = pi p_b and B = pi p_l, each bounce's direct light at y is weighted
 // n A / (n A + B); the light path brings beta_x rho_y W_y A / (n A + B), W_y
 // the light's weight at y (direct_light.h): its contribution f/p_l = beta_x
-// rho_y W_y A / B times its weight B / (n A + B). The weights of a path sum
+// rho_y W_y A / B times its weight B / (n A + B). With the cache, B is
+// taken M / M_c times larger and the pick weighed M_c / M (light_cache.h):
+// the light path still brings beta_x rho_y W_y A / (n A + B). The weights of a path sum
 // to 1, so the sum of both is unbiased (Veach 9.2.2) whatever n is.
 #pragma once
 
@@ -26,6 +32,7 @@
 
 #include "render/direct_light.h"
 #include "render/integrator.h"
+#include "render/light_cache.h"
 
 namespace whisker {
 
@@ -40,9 +47,10 @@ inline float light_path_start(const World::Light& light) {
 
 // Where a cosine bounce that left a diffuse vertex with `count` bounces can
 // also be made by a light path (both its normals in front of the direction).
-inline Departure departure(const FacingNormals& n, const vec3& d, int count) {
+inline Departure departure(const FacingNormals& n, const vec3& d, int count,
+                           float light_scale = 1.0f) {
   if (!(glm::dot(n.ng, d) > 0.0f)) return {};
-  return {glm::dot(n.ns, d), float(count)};
+  return {glm::dot(n.ns, d), float(count), light_scale};
 }
 
 // The balance heuristic's weight of a bounce (see above), for the n A and B
@@ -63,7 +71,7 @@ inline float bounce_weight(const Departure& from, const Ray& in, const SurfaceHi
                            const LightArrival& a, float light_start) {
   if (!(from.cos > 0.0f) || a.d2 < light_start * light_start) return 1.0f;
   const float nA = from.count * from.cos * std::fabs(glm::dot(y.ng, in.d)) / (y.t * y.t);
-  return bounce_share(nA, a.cos_g / (4.0f * a.d2));
+  return bounce_share(nA, from.light_scale * a.cos_g / (4.0f * a.d2));
 }
 
 // The vertex a light path is sent to: its hit, facing normals, throughput
@@ -75,8 +83,22 @@ struct ConnectionVertex {
   int bounces = 1;
 };
 
-// One light path connected to x: the light it brings there, weighted (see
-// above; the throughput applied). Draws two numbers; counts its rays.
-vec3 light_connection(const PathContext& ctx, const ConnectionVertex& x, Sampler& sampler);
+// A vertex's light path, chosen before the vertex's other work: its two
+// numbers and, with the sample's light cache (light_cache.h), the entry
+// they pick, already on its way into the processor's cache (prefetched:
+// it is read after the direct light's shadow ray and the bounces), and the
+// light paths' density factor M / M_c for the vertex's channels (0 without
+// a cache or a matching entry: no light path makes the vertex's paths).
+struct LightPick {
+  float u = 0.0f;
+  const CachedLightVertex* entry = nullptr;
+  float scale = 0.0f;
+};
+// Draws two numbers for the vertex of throughput beta (its albedo in it).
+LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler);
+
+// The light path `pick` connected to x: the light it brings there, weighted
+// (see above; the throughput applied). Counts its rays.
+vec3 light_connection(const PathContext& ctx, const ConnectionVertex& x, const LightPick& pick);
 
 }  // namespace whisker

@@ -24,6 +24,7 @@ namespace whisker {
 
 namespace {
 constexpr int kTile = 32;
+constexpr int kCachedSamples = 16;
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
@@ -56,6 +57,8 @@ struct ProgressiveRenderer::Job {
   int pass_spp = 0;
   Clock::time_point pass_start;
   std::atomic<int> next_tile{0};
+  std::vector<LightCache> light_caches;  // one per sample, if connections (light_cache.h)
+  std::atomic<int> next_cache{0};
   std::atomic<std::uint64_t> pass_nans{0}, pass_rays{0};
   std::atomic<bool> aborted{false};
 };
@@ -242,6 +245,14 @@ void ProgressiveRenderer::worker_main(int index) {
     }
     job.sync.arrive_and_wait();
     if (!job.keep_going) return;
+    if (!job.light_caches.empty()) {  // decided by begin_pass: all threads agree
+      try {
+        build_light_caches();
+      } catch (const std::bad_alloc&) {
+        out_of_memory("tracing light paths");
+      }
+      job.sync.arrive_and_wait();
+    }
     try {
       run_tiles();
     } catch (const std::bad_alloc&) {
@@ -317,6 +328,11 @@ bool ProgressiveRenderer::begin_pass() {
   int spp = job.preview_pass ? 1 : std::max(1, s.spp);
   if (s.target_spp > 0 && !job.preview_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
+  // A pass holds at most kCachedSamples light caches: bounded whatever --spp.
+  const bool cached = !job.preview_pass && s.connect && s.indirect;
+  if (cached) spp = std::min(spp, kCachedSamples);
+  job.light_caches.resize(cached ? std::size_t(spp) : 0);
+  job.next_cache = 0;
   job.pass_spp = spp;
   job.sample_base = job.preview_pass ? job.quick.next_sample() : job.first_sample + job.spp_done;
   job.next_tile = 0;
@@ -355,6 +371,20 @@ bool ProgressiveRenderer::abandoning() const {
           pending_generation_.load(std::memory_order_relaxed) != job_->generation);
 }
 
+void ProgressiveRenderer::build_light_caches() {
+  Job& job = *job_;
+  std::uint64_t rays = 0;
+  for (;;) {
+    const int k = job.next_cache.fetch_add(1, std::memory_order_relaxed);
+    if (k >= int(job.light_caches.size())) break;
+    if (abandoning()) job.aborted = true;  // no tile may run on a cache never built
+    if (job.aborted) break;
+    job.light_caches[std::size_t(k)].build(job.world, job.scene.settings,
+                                          job.sample_base + std::uint64_t(k), rays);
+  }
+  job.pass_rays.fetch_add(rays, std::memory_order_relaxed);
+}
+
 void ProgressiveRenderer::run_tiles() {
   Job& job = *job_;
   const int tiles = job.pass_tiles_x * job.pass_tiles_y;
@@ -372,7 +402,8 @@ void ProgressiveRenderer::run_tiles() {
     const Scene& scene = job.preview_pass ? job.quick.scene() : job.scene;
     Film& film = job.preview_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
-    const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); }};
+    const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); },
+                        job.preview_pass || job.light_caches.empty() ? nullptr : job.light_caches.data()};
     const TileResult r = render_tile(ctx, cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published
       job.aborted = true;

@@ -124,6 +124,7 @@ class ProgressiveRenderer {
   struct Job;
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
+  void build_light_caches();  // all threads: the pass's light caches
   void run_tiles();
   bool abandoning() const;  // a stop or an edit: the pass in flight is dropped
   void end_pass();     // thread 0 only: merge and publish

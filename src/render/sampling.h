@@ -2,6 +2,7 @@
 // around a normal, and cosine-weighted directions in it.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -53,6 +54,16 @@ inline vec3 cosine_direction(const Frame& f, float u1, float u2) {
   float s, c;
   sincos_turn(u1, s, c);
   return r * c * f.b1 + r * s * f.b2 + std::sqrt(u2) * f.n;
+}
+
+// A direction uniform on the unit sphere: z = 1 - 2 u2, the azimuth 2 pi u1
+// (Archimedes: z is uniform on a sphere).
+inline vec3 uniform_sphere(float u1, float u2) {
+  const float z = 1.0f - 2.0f * u2;
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  float s, c;
+  sincos_turn(u1, s, c);
+  return vec3(r * c, r * s, z);
 }
 
 // The same around unit n, from two uniforms.

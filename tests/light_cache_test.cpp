@@ -1,0 +1,120 @@
+// The light cache (render/light_cache.h): its entries are the first hits of
+// light paths in stratified directions, with the light's weight and the
+// light paths' density there; a vertex picks among the entries that share
+// one of its colour channels, weighed by M / M_c; a sample's cache depends
+// on the seed and the sample number only. (That connections through it keep
+// every pixel's expectation: light_connect_test.cpp.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include <glm/geometric.hpp>
+
+#include "render/light_cache.h"
+#include "scene/world.h"
+#include "closed_sphere.h"
+#include "render_util.h"
+
+using namespace whisker;
+
+// Inside a closed grey sphere every light path meets the shell, lit: all M
+// entries are kept (factor 1), each on the sphere, with the light's weight
+// I cos/(4 pi^2 d^2) (report section 2) and B = cos_l/(4 d^2), checked in
+// double from the point; the directions are stratified, so exactly half of
+// the entries lie above the light (z = 1 - 2 u2, rows of equal area).
+TEST(LightCache, EntriesAreTheLightPathsFirstHits) {
+  const glm::dvec3 c(3.0, -2.0, 1.0);
+  const double I = 1000.0, R = 10.0;
+  const Scene scene = closed_sphere(0.5f, vec3(c), 2, 1, 4);
+  const World world(scene);
+  LightCache cache;
+  std::uint64_t rays = 0;
+  cache.build(world, scene.settings, 7, rays);
+  EXPECT_EQ(rays, std::uint64_t(LightCache::kPaths));
+  EXPECT_EQ(cache.density_scale(7u), 1.0f);
+  int above = 0, seen = 0;
+  const int M = LightCache::kPaths;
+  std::set<const CachedLightVertex*> distinct;
+  for (int k = 0; k < M; ++k) {
+    const CachedLightVertex* e = cache.pick(1u, (float(k) + 0.5f) / float(M));
+    ASSERT_NE(e, nullptr);
+    distinct.insert(e);
+    const glm::dvec3 p(e->p);
+    // Render space is the scene's space moved by the camera position.
+    const glm::dvec3 world_p = p + glm::dvec3(scene.camera.position);
+    EXPECT_NEAR(glm::length(world_p), R, 1e-4) << k;
+    const glm::dvec3 to_light = c - world_p;
+    const double d2 = glm::dot(to_light, to_light);
+    const double cos_l = glm::dot(glm::dvec3(e->ng), to_light) / std::sqrt(d2);
+    EXPECT_NEAR(glm::dot(glm::dvec3(e->ng), -world_p / R), 1.0, 1e-6);  // the inside faces the light
+    EXPECT_NEAR(e->B, cos_l / (4.0 * d2), 1e-5 * cos_l / (4.0 * d2));
+    EXPECT_NEAR(e->weight, I * cos_l / (4.0 * kPi * kPi * d2), 1e-5 * I * cos_l / (4.0 * kPi * kPi * d2));
+    EXPECT_EQ(e->albedo, vec3(0.5f));
+    above += to_light.z < 0.0 ? 1 : 0;
+    ++seen;
+  }
+  EXPECT_EQ(int(distinct.size()), M);  // each entry picked once by M even steps
+  EXPECT_EQ(above, M / 2);
+  EXPECT_EQ(seen, M);
+}
+
+// In the cat's room (walls of pure primaries and their pairs, a white cat)
+// a vertex carrying red picks only entries with red in them, each equally
+// often, and M / M_c is what makes them stand for all M light paths; a
+// vertex whose colour nothing in a room has picks nothing (factor 0: its
+// bounces take the whole weight).
+TEST(LightCache, PicksOnlyEntriesThatShareAChannel) {
+  const Scene scene = sized("cat", 8, 8, 1, 1);
+  const World world(scene);
+  LightCache cache;
+  std::uint64_t rays = 0;
+  cache.build(world, scene.settings, 3, rays);
+  for (unsigned channels = 1; channels < 8; ++channels) {
+    const float scale = cache.density_scale(channels);
+    // Some light paths meet walls of other colours; every wall has one.
+    if (channels == 7u) ASSERT_GE(scale, 1.0f); else ASSERT_GT(scale, 1.0f) << channels;
+    const int matching = int(std::lround(float(LightCache::kPaths) / scale));
+    std::set<const CachedLightVertex*> distinct;
+    for (int k = 0; k < matching; ++k) {
+      const CachedLightVertex* e = cache.pick(channels, (float(k) + 0.5f) / float(matching));
+      ASSERT_NE(e, nullptr);
+      EXPECT_NE(channel_bits(e->albedo) & channels, 0u) << channels;
+      distinct.insert(e);
+    }
+    EXPECT_EQ(int(distinct.size()), matching) << channels;
+  }
+  // Red only and green only together are the entries with red or green.
+  const auto count = [&](unsigned ch) { return std::lround(float(LightCache::kPaths) / cache.density_scale(ch)); };
+  EXPECT_LT(count(1u), count(3u));
+  EXPECT_LT(count(3u), count(7u) + 1);
+
+  const Scene red = closed_sphere(vec3(1.0f, 0.0f, 0.0f), vec3(1.0f, 2.0f, 0.0f), 2, 1, 4);
+  const World red_world(red);
+  cache.build(red_world, red.settings, 3, rays);
+  EXPECT_EQ(cache.density_scale(1u), 1.0f);
+  EXPECT_EQ(cache.density_scale(2u), 0.0f);
+  EXPECT_EQ(cache.pick(2u, 0.5f), nullptr);
+  EXPECT_EQ(cache.pick(6u, 0.0f), nullptr);
+}
+
+// A sample's cache is a function of the seed and the sample number: built
+// twice it is the same, and the next sample's differs.
+TEST(LightCache, DependsOnTheSeedAndSampleOnly) {
+  const Scene scene = sized("cat", 8, 8, 1, 1);
+  const World world(scene);
+  LightCache a, b, c;
+  std::uint64_t rays = 0;
+  a.build(world, scene.settings, 5, rays);
+  b.build(world, scene.settings, 5, rays);
+  c.build(world, scene.settings, 6, rays);
+  int same = 0, differ = 0;
+  for (int k = 0; k < 64; ++k) {
+    const float u = (float(k) + 0.5f) / 64.0f;
+    const CachedLightVertex *ea = a.pick(7u, u), *eb = b.pick(7u, u), *ec = c.pick(7u, u);
+    same += ea->p == eb->p && ea->weight == eb->weight ? 1 : 0;
+    differ += ea->p != ec->p ? 1 : 0;
+  }
+  EXPECT_EQ(same, 64);
+  EXPECT_GT(differ, 60);
+}
