@@ -49,7 +49,7 @@ BUILD=${WHISKER_BUILD:-$ROOT/build}
 REPORT_SPP=${REPORT_SPP:-16}
 REPORT_SMALL=${REPORT_SMALL:-2}
 REPORT_FULL=${REPORT_FULL:-0}
-CONFIGS=${CONFIGS:-"defaults||16 32;no-reuse|--reuse 1|16 32;reuse-4|--reuse 4 --split 4,2|8 32;no-connect|--connect off|16 32"}
+CONFIGS=${CONFIGS:-"defaults||16 32;no-reuse|--reuse 1|16 32;reuse-4|--reuse 4 --split 4,2|8 32;no-connect|--connect off|24 48"}
 read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
 THREADS=${THREADS:-2}
 SCALES=${SCALES:-"1 2 4 8 16"}
