@@ -44,7 +44,8 @@ const SettingField kFields[] = {
      "Path reuse: the pixels of each NxN block share their indirect paths (1 = off, the report's)",
      1, kMaxReuse},
     {"connect", "--connect", &R::connect,
-     "Light connections: each diffuse bounce also reaches a point the light shines on (MIS)", 0, 0,
+     "Light connections: each diffuse bounce also reaches a point the light shines on, one of the "
+     "sample's shared light paths (MIS; on in the cat scene)", 0, 0,
      0, "", "light connections"},
 };
 

@@ -57,8 +57,9 @@ struct RenderSettings {
   int reuse = 1;  // 1 to kMaxReuse
   // Light connections (render/light_connect.h): at each diffuse vertex that
   // bounces, one more path, from the light to a surface point it shines on
-  // and from there to the vertex, combined with the cosine bounces by
-  // multiple importance sampling.
+  // (one of the sample's light cache, render/light_cache.h) and from there
+  // to the vertex, combined with the cosine bounces by multiple importance
+  // sampling.
   bool connect = false;
 
   bool operator==(const RenderSettings&) const = default;
