@@ -44,6 +44,28 @@ RenderSettings cheap_settings(const RenderSettings& s) {
 
 namespace {
 
+// A pixel's sums at the start of the tile's samples: carried from the
+// pass's earlier chunk, or zero.
+PixelSum start_sum(const TileWork& tile, std::uint32_t pixel) {
+  return tile.carry.in ? tile.carry.sums[pixel] : PixelSum{};
+}
+
+// A pixel's sums at the end: left for the pass's next chunk, or added to the
+// film (its non-finite samples counted in `result` then).
+void finish_sum(const TileWork& tile, std::uint32_t pixel, const PixelSum& sum, Film& film,
+                TileResult& result) {
+  if (tile.carry.out) {
+    tile.carry.sums[pixel] = sum;
+    return;
+  }
+  film.add(pixel, sum);
+  result.dropped += sum.dropped;
+}
+
+std::uint32_t pixel_index(const CameraFrame& cam, int i, int j) {
+  return std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j);
+}
+
 // render_tile() with light caches and one pixel per block: the samples in
 // the outer loop, so that a thread reads one sample's cache at a time (a
 // pass's caches together outgrow the processor's caches, and a connection
@@ -57,6 +79,7 @@ TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
   TileResult result;
   const FlushDenormals ftz;
   std::vector<PixelSum> sums(static_cast<std::size_t>(pixels));
+  for (int p = 0; p < pixels; ++p) sums[std::size_t(p)] = start_sum(tile, pixel_index(cam, t.i0 + p / cols, t.j0 + p % cols));
   for (int k = 0; k < tile.spp; ++k) {
     if (tile.abandon && tile.abandon()) {
       result.abandoned = true;
@@ -71,11 +94,8 @@ TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
       sums[std::size_t(p)].add(sample_pixel(sample_ctx, cam, px, sampler), sample);
     }
   }
-  for (int p = 0; p < pixels; ++p) {
-    const int i = t.i0 + p / cols, j = t.j0 + p % cols;
-    film.add(std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j), sums[std::size_t(p)]);
-    result.dropped += sums[std::size_t(p)].dropped;
-  }
+  for (int p = 0; p < pixels; ++p)
+    finish_sum(tile, pixel_index(cam, t.i0 + p / cols, t.j0 + p % cols), sums[std::size_t(p)], film, result);
   return result;
 }
 
@@ -97,7 +117,8 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
     for (int bj = t.j0; bj < t.j1; bj += side) {
       const PixelBlock block{bi, std::min(t.i1, bi + side), bj, std::min(t.j1, bj + side)};
       const int cols = block.j1 - block.j0, pixels = (block.i1 - block.i0) * cols;
-      std::fill_n(sums, pixels, PixelSum{});
+      for (int p = 0; p < pixels; ++p)
+        sums[p] = start_sum(tile, pixel_index(cam, bi + p / cols, bj + p % cols));
       for (int k = 0; k < tile.spp; ++k) {
         if (tile.abandon && tile.abandon()) {
           result.abandoned = true;
@@ -114,11 +135,8 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
         }
         for (int p = 0; p < pixels; ++p) sums[p].add(out[p], sample);
       }
-      for (int p = 0; p < pixels; ++p) {
-        const int i = bi + p / cols, j = bj + p % cols;
-        film.add(std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j), sums[p]);
-        result.dropped += sums[p].dropped;
-      }
+      for (int p = 0; p < pixels; ++p)
+        finish_sum(tile, pixel_index(cam, bi + p / cols, bj + p % cols), sums[p], film, result);
     }
   }
   return result;

@@ -37,8 +37,16 @@ struct TileWork {
   int spp = 0;
   std::function<bool()> abandon;
   // Light connections' caches of samples first_sample.. (light_cache.h), or
-  // null: each connection then traces its own light path.
+  // null: no connections are made.
   const LightCache* light_caches = nullptr;
+  // A pass in chunks of samples: each pixel's sums (indexed by i * width +
+  // j) start from `sums` when `in` (else from zero) and are left there when
+  // `out` (else added to the film), so the film gets the pass's sums as if
+  // its samples had run in one chunk, bit for bit.
+  struct Carry {
+    PixelSum* sums = nullptr;
+    bool in = false, out = false;
+  } carry;
 };
 
 struct TileResult {

@@ -57,8 +57,14 @@ struct ProgressiveRenderer::Job {
   int pass_spp = 0;
   Clock::time_point pass_start;
   std::atomic<int> next_tile{0};
-  std::vector<LightCache> light_caches;  // one per sample, if connections (light_cache.h)
+  // With light connections a pass runs in chunks of at most kCachedSamples
+  // samples, each with its samples' caches (light_cache.h); the pixels'
+  // sums carry from chunk to chunk (TileWork::carry): the same sums as one.
+  std::vector<LightCache> light_caches;  // one per sample of a chunk
   std::atomic<int> next_cache{0};
+  int chunks = 1, chunk_spp = 0;
+  std::vector<PixelSum> carry;
+  int chunk_samples(int chunk) const { return std::min(chunk_spp, pass_spp - chunk * chunk_spp); }
   std::atomic<std::uint64_t> pass_nans{0}, pass_rays{0};
   std::atomic<bool> aborted{false};
 };
@@ -226,45 +232,35 @@ void ProgressiveRenderer::worker_main(int index) {
   Job& job = *job_;
   // Out of memory in a worker (the BVH, the film, a snapshot) ended the
   // process in std::terminate: it stops the render instead, for failure().
-  const auto out_of_memory = [&](const char* doing) {
-    {
+  const auto guarded = [&](const char* doing, auto&& step) {
+    try {
+      step();
+    } catch (const std::bad_alloc&) {
       std::lock_guard lock(pending_mutex_);
       if (failure_.empty()) failure_ = std::string("out of memory while ") + doing;
       quit_ = true;
+      job.aborted = true;
     }
-    job.aborted = true;
   };
   for (;;) {
-    if (index == 0) {
-      try {
-        job.keep_going = begin_pass();
-      } catch (const std::bad_alloc&) {
-        out_of_memory("preparing the scene (its BVH and image buffers)");
-        job.keep_going = false;
-      }
+    if (index == 0) {  // a begin_pass that fails ends the workers
+      job.keep_going = false;
+      guarded("preparing the scene (its BVH and image buffers)", [&] { job.keep_going = begin_pass(); });
     }
     job.sync.arrive_and_wait();
     if (!job.keep_going) return;
-    if (!job.light_caches.empty()) {  // decided by begin_pass: all threads agree
-      try {
-        build_light_caches();
-      } catch (const std::bad_alloc&) {
-        out_of_memory("tracing light paths");
+    for (int chunk = 0; chunk < job.chunks; ++chunk) {  // every thread, every barrier
+      if (!job.light_caches.empty()) {  // decided by begin_pass: all threads agree
+        guarded("tracing light paths", [&] { build_light_caches(chunk); });
+        job.sync.arrive_and_wait();
+        if (index == 0) job.next_cache = 0;  // next read after the tiles' barrier
       }
+      guarded("rendering", [&] { run_tiles(chunk); });
       job.sync.arrive_and_wait();
+      if (index == 0) job.next_tile = 0;  // next read after the caches' barrier
     }
-    try {
-      run_tiles();
-    } catch (const std::bad_alloc&) {
-      out_of_memory("rendering");
-    }
-    job.sync.arrive_and_wait();
     if (index == 0) {
-      try {
-        end_pass();
-      } catch (const std::bad_alloc&) {
-        out_of_memory("publishing a pass");
-      }
+      guarded("publishing a pass", [&] { end_pass(); });
       if (on_publish_ && !job.aborted) on_publish_();
     }
   }
@@ -328,10 +324,12 @@ bool ProgressiveRenderer::begin_pass() {
   int spp = job.preview_pass ? 1 : std::max(1, s.spp);
   if (s.target_spp > 0 && !job.preview_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
-  // A pass holds at most kCachedSamples light caches: bounded whatever --spp.
+  // At most kCachedSamples light caches at a time: bounded whatever --spp.
   const bool cached = !job.preview_pass && s.connect && s.indirect;
-  if (cached) spp = std::min(spp, kCachedSamples);
-  job.light_caches.resize(cached ? std::size_t(spp) : 0);
+  job.chunk_spp = cached ? std::min(spp, kCachedSamples) : spp;
+  job.chunks = (spp + job.chunk_spp - 1) / job.chunk_spp;
+  job.light_caches.resize(cached ? std::size_t(job.chunk_spp) : 0);
+  if (job.chunks > 1) job.carry.resize(std::size_t(job.pass_cam->width) * std::size_t(job.pass_cam->height));
   job.next_cache = 0;
   job.pass_spp = spp;
   job.sample_base = job.preview_pass ? job.quick.next_sample() : job.first_sample + job.spp_done;
@@ -342,7 +340,7 @@ bool ProgressiveRenderer::begin_pass() {
   job.pass_start = Clock::now();
   progress_generation_ = job.generation;
   progress_tiles_done_ = 0;
-  progress_tiles_total_ = job.pass_tiles_x * job.pass_tiles_y;
+  progress_tiles_total_ = job.pass_tiles_x * job.pass_tiles_y * job.chunks;
   progress_spp_ = job.preview_pass ? 0 : spp;
   progress_start_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
                            job.pass_start.time_since_epoch()).count();
@@ -371,21 +369,21 @@ bool ProgressiveRenderer::abandoning() const {
           pending_generation_.load(std::memory_order_relaxed) != job_->generation);
 }
 
-void ProgressiveRenderer::build_light_caches() {
+void ProgressiveRenderer::build_light_caches(int chunk) {
   Job& job = *job_;
   std::uint64_t rays = 0;
+  const std::uint64_t first = job.sample_base + std::uint64_t(chunk * job.chunk_spp);
   for (;;) {
     const int k = job.next_cache.fetch_add(1, std::memory_order_relaxed);
-    if (k >= int(job.light_caches.size())) break;
+    if (k >= job.chunk_samples(chunk)) break;
     if (abandoning()) job.aborted = true;  // no tile may run on a cache never built
     if (job.aborted) break;
-    job.light_caches[std::size_t(k)].build(job.world, job.scene.settings,
-                                          job.sample_base + std::uint64_t(k), rays);
+    job.light_caches[std::size_t(k)].build(job.world, job.scene.settings, first + std::uint64_t(k), rays);
   }
   job.pass_rays.fetch_add(rays, std::memory_order_relaxed);
 }
 
-void ProgressiveRenderer::run_tiles() {
+void ProgressiveRenderer::run_tiles(int chunk) {
   Job& job = *job_;
   const int tiles = job.pass_tiles_x * job.pass_tiles_y;
   for (;;) {
@@ -402,8 +400,10 @@ void ProgressiveRenderer::run_tiles() {
     const Scene& scene = job.preview_pass ? job.quick.scene() : job.scene;
     Film& film = job.preview_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
-    const TileWork work{{i0, i1, j0, j1}, job.sample_base, job.pass_spp, [this] { return abandoning(); },
-                        job.preview_pass || job.light_caches.empty() ? nullptr : job.light_caches.data()};
+    TileWork work{{i0, i1, j0, j1}, job.sample_base + std::uint64_t(chunk * job.chunk_spp),
+                  job.chunk_samples(chunk), [this] { return abandoning(); },
+                  job.light_caches.empty() ? nullptr : job.light_caches.data()};
+    if (job.chunks > 1) work.carry = {job.carry.data(), chunk > 0, chunk + 1 < job.chunks};
     const TileResult r = render_tile(ctx, cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published
       job.aborted = true;

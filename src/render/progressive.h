@@ -124,8 +124,8 @@ class ProgressiveRenderer {
   struct Job;
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
-  void build_light_caches();  // all threads: the pass's light caches
-  void run_tiles();
+  void build_light_caches(int chunk);     // all threads: the chunk's light caches
+  void run_tiles(int chunk);
   bool abandoning() const;  // a stop or an edit: the pass in flight is dropped
   void end_pass();     // thread 0 only: merge and publish
   void adopt_start(const RenderStart& start);  // thread 0, at adoption
