@@ -66,6 +66,20 @@ std::uint32_t pixel_index(const CameraFrame& cam, int i, int j) {
   return std::uint32_t(i) * std::uint32_t(cam.width) + std::uint32_t(j);
 }
 
+// Whether the pass is being dropped (asked before each of a tile's samples).
+bool abandoned(const TileWork& tile, TileResult& result) {
+  if (!(tile.abandon && tile.abandon())) return false;
+  result.abandoned = true;
+  return true;
+}
+
+// The context of the tile's k-th sample: with its light cache, if any.
+PathContext sample_context(const PathContext& ctx, const TileWork& tile, int k) {
+  PathContext c = ctx;
+  if (tile.light_caches) c.lights = &tile.light_caches[k];
+  return c;
+}
+
 // render_tile() with light caches and one pixel per block: the samples in
 // the outer loop, so that a thread reads one sample's cache at a time (a
 // pass's caches together outgrow the processor's caches, and a connection
@@ -81,13 +95,9 @@ TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
   std::vector<PixelSum> sums(static_cast<std::size_t>(pixels));
   for (int p = 0; p < pixels; ++p) sums[std::size_t(p)] = start_sum(tile, pixel_index(cam, t.i0 + p / cols, t.j0 + p % cols));
   for (int k = 0; k < tile.spp; ++k) {
-    if (tile.abandon && tile.abandon()) {
-      result.abandoned = true;
-      return result;
-    }
+    if (abandoned(tile, result)) return result;
     const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
-    PathContext sample_ctx = ctx;
-    sample_ctx.lights = &tile.light_caches[k];
+    const PathContext sample_ctx = sample_context(ctx, tile, k);
     for (int p = 0; p < pixels; ++p) {
       const Pixel px{t.i0 + p / cols, t.j0 + p % cols};
       Sampler sampler = pixel_sampler(s, cam, px, sample);
@@ -120,13 +130,9 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
       for (int p = 0; p < pixels; ++p)
         sums[p] = start_sum(tile, pixel_index(cam, bi + p / cols, bj + p % cols));
       for (int k = 0; k < tile.spp; ++k) {
-        if (tile.abandon && tile.abandon()) {
-          result.abandoned = true;
-          return result;
-        }
+        if (abandoned(tile, result)) return result;
         const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
-        PathContext sample_ctx = ctx;
-        if (tile.light_caches) sample_ctx.lights = &tile.light_caches[k];
+        const PathContext sample_ctx = sample_context(ctx, tile, k);
         if (reuse) {
           sample_block(sample_ctx, cam, block, sample, out);
         } else {  // one pixel
