@@ -243,14 +243,14 @@ void ProgressiveRenderer::worker_main(int index) {
     }
   };
   for (;;) {
-    if (index == 0) {  // a begin_pass that fails ends the workers
-      job.keep_going = false;
-      guarded("preparing the scene (its BVH and image buffers)", [&] { job.keep_going = begin_pass(); });
-    }
+    if (index == 0) job.keep_going = false;  // and so it stays if begin_pass fails
+    if (index == 0) guarded("preparing the scene (its BVH and image buffers)", [&] { job.keep_going = begin_pass(); });
     job.sync.arrive_and_wait();
     if (!job.keep_going) return;
-    for (int chunk = 0; chunk < job.chunks; ++chunk) {  // every thread, every barrier
-      if (!job.light_caches.empty()) {  // decided by begin_pass: all threads agree
+    const int chunks = job.chunks;  // read now: after the last barrier thread 0 starts the next pass
+    const bool caches = !job.light_caches.empty();
+    for (int chunk = 0; chunk < chunks; ++chunk) {  // every thread, every barrier
+      if (caches) {
         guarded("tracing light paths", [&] { build_light_caches(chunk); });
         job.sync.arrive_and_wait();
         if (index == 0) job.next_cache = 0;  // next read after the tiles' barrier
