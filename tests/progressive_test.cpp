@@ -365,7 +365,7 @@ TEST(Progressive, LightConnectionsPassInChunksAddsTheSumsOfOnePiece) {
   film.reset(24, 20);
   PathStats stats;
   const PathContext ctx{world, scene.settings, stats};
-  const TileWork work{{0, 20, 0, 24}, 0, 40, nullptr, caches.data()};
+  const TileWork work{{0, 20, 0, 24}, 0, 40, nullptr, caches.data(), {}};
   render_tile(ctx, cam, work, film);
   Snapshot whole;
   film.publish(whole);

@@ -31,7 +31,7 @@ struct PathContext {
   const RenderSettings& settings;
   PathStats& stats;
   // The light paths of this sample's connections (light_cache.h), or null:
-  // then each connection traces its own.
+  // then no connection is made (light_connect.h).
   const LightCache* lights = nullptr;
 };
 

@@ -27,12 +27,12 @@ SegmentEnd segment_end(const ConnectionVertex& x, const CachedLightVertex& e, co
 
 LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler) {
   LightPick pick;
-  float u2;
-  sampler.get2d(pick.u, u2);
+  float u1, u2;  // one 2D request (a stratified pair); the first number picks
+  sampler.get2d(u1, u2);
   if (!ctx.lights) return pick;
   const unsigned channels = channel_bits(beta);
   pick.scale = ctx.lights->density_scale(channels);
-  pick.entry = ctx.lights->pick(channels, pick.u);
+  pick.entry = ctx.lights->pick(channels, u1);
   if (pick.entry) __builtin_prefetch(pick.entry);
   return pick;
 }

@@ -83,14 +83,13 @@ struct ConnectionVertex {
   int bounces = 1;
 };
 
-// A vertex's light path, chosen before the vertex's other work: its two
-// numbers and, with the sample's light cache (light_cache.h), the entry
-// they pick, already on its way into the processor's cache (prefetched:
+// A vertex's light path, chosen before the vertex's other work (it draws
+// one 2D request): with the sample's light cache (light_cache.h), the entry
+// picked, already on its way into the processor's cache (prefetched:
 // it is read after the direct light's shadow ray and the bounces), and the
 // light paths' density factor M / M_c for the vertex's channels (0 without
 // a cache or a matching entry: no light path makes the vertex's paths).
 struct LightPick {
-  float u = 0.0f;
   const CachedLightVertex* entry = nullptr;
   float scale = 0.0f;
 };

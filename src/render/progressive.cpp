@@ -402,7 +402,7 @@ void ProgressiveRenderer::run_tiles(int chunk) {
     const PathContext ctx{job.world, scene.settings, stats};
     TileWork work{{i0, i1, j0, j1}, job.sample_base + std::uint64_t(chunk * job.chunk_spp),
                   job.chunk_samples(chunk), [this] { return abandoning(); },
-                  job.light_caches.empty() ? nullptr : job.light_caches.data()};
+                  job.light_caches.empty() ? nullptr : job.light_caches.data(), {}};
     if (job.chunks > 1) work.carry = {job.carry.data(), chunk > 0, chunk + 1 < job.chunks};
     const TileResult r = render_tile(ctx, cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published
