@@ -31,7 +31,13 @@ TEST(ObjectBvh, ThousandsOfSpheresMatchALinearLoop) {
   // close are a tie either may win.
   auto tol = [](float t) { return 4e-4f * t + 2e-3f; };
   int hits = 0, ties = 0;
-  for (int k = 0; k < 100000; ++k) {
+  // A quarter under a sanitizer, whose job is memory, not more numbers.
+#ifdef WHISKER_SANITIZED
+  const int rays = 25000;
+#else
+  const int rays = 100000;
+#endif
+  for (int k = 0; k < rays; ++k) {
     const Ray r{vec3(pos(g), pos(g), pos(g)), random_direction(g)};
     float best = kInf;
     std::uint32_t best_i = 0;
@@ -56,7 +62,7 @@ TEST(ObjectBvh, ThousandsOfSpheresMatchALinearLoop) {
       EXPECT_FALSE(bvh.occluded(Ray{r.o, r.d, 0.0f, best - tol(best)}, nullptr)) << k;
     }
   }
-  EXPECT_GT(hits, 90000);
+  EXPECT_GT(hits, rays * 9 / 10);
   EXPECT_LT(ties, hits / 1000);
 }
 

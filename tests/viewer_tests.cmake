@@ -24,11 +24,14 @@ gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
 
 # whisker_viewer_script_test(NAME SCRIPT TIMEOUT): a window test driven by
 # xdotool from a shell script given the whisker binary; exit 77 (no xdotool
-# or Xvfb) skips it; one X server at a time.
+# or Xvfb) skips it. Each starts its own X server on a display number the
+# server picks (tests/viewer_drive.sh, in_xvfb), so they run beside each
+# other and beside the rest: they spend most of their time holding keys and
+# waiting for frames, a fraction of a core each (one render thread).
 function(whisker_viewer_script_test name script timeout)
   add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/${script} $<TARGET_FILE:whisker>)
   set_tests_properties(${name} PROPERTIES
-    SKIP_RETURN_CODE 77 TIMEOUT ${timeout} RESOURCE_LOCK whisker_xvfb LABELS viewer)
+    SKIP_RETURN_CODE 77 TIMEOUT ${timeout} LABELS "viewer;waits")
 endfunction()
 
 # Real mouse and keyboard input through xdotool (skipped without it).
