@@ -17,6 +17,7 @@
 #include "geometry/bvh.h"
 #include "geometry/bvh_build.h"
 #include "scene/mesh_io.h"
+#include "sanitized.h"
 
 namespace whisker {
 namespace {
@@ -157,12 +158,7 @@ std::vector<Triangle> load_cat() {
 TEST(Bvh, SahMidpointAndBruteAgreeOnTheCat) {
   const std::vector<Triangle> tris = load_cat();
   ASSERT_EQ(tris.size(), 3954u);
-  // A quarter under a sanitizer, whose job is memory, not more numbers.
-#ifdef WHISKER_SANITIZED
-  const std::vector<Ray> rays = cat_rays(tris, 25000);
-#else
-  const std::vector<Ray> rays = cat_rays(tris, 100000);
-#endif
+  const std::vector<Ray> rays = cat_rays(tris, release_or_sanitized(100000, 25000));
   const Bvh brute = Bvh::build(tris, BvhMethod::Brute);
   const Bvh bbox = Bvh::build(tris, BvhMethod::BBox);
   const Bvh mid = Bvh::build(tris, BvhMethod::Midpoint);

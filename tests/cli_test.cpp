@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "io/image_io.h"
+#include "sanitized.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -188,12 +189,8 @@ TEST_F(CommandLineE2E, ProgressLinesWhenStderrIsALog) {
   // samples done of the target, the time elapsed and the time left. The
   // render must outlast the rate's first 0.2 s by a few lines (about 1 s
   // in Release; at 128 x 128 it once finished in 0.25 s, with no rate yet).
-  // Under a sanitizer (10-20x slower) a fifth of the frames lasts as long.
-#ifdef WHISKER_SANITIZED
-  const int frames = 6;
-#else
-  const int frames = 30;
-#endif
+  // Under a sanitizer a fifth of the frames lasts as long.
+  const int frames = release_or_sanitized(30, 6);
   const Outcome r = run("--headless --scene " + scene(256, 256, 16, 1) + " --frames " +
                         std::to_string(frames) + " --progress 0.1 --out " + f("a.png"));
   ASSERT_EQ(r.code, 0) << r.err;

@@ -11,6 +11,7 @@
 #include "scene/world.h"
 #include "scene/scene_io.h"
 #include "directions.h"
+#include "sanitized.h"
 
 using namespace whisker;
 
@@ -31,12 +32,7 @@ TEST(ObjectBvh, ThousandsOfSpheresMatchALinearLoop) {
   // close are a tie either may win.
   auto tol = [](float t) { return 4e-4f * t + 2e-3f; };
   int hits = 0, ties = 0;
-  // A quarter under a sanitizer, whose job is memory, not more numbers.
-#ifdef WHISKER_SANITIZED
-  const int rays = 25000;
-#else
-  const int rays = 100000;
-#endif
+  const int rays = release_or_sanitized(100000, 25000);
   for (int k = 0; k < rays; ++k) {
     const Ray r{vec3(pos(g), pos(g), pos(g)), random_direction(g)};
     float best = kInf;

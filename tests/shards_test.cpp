@@ -20,6 +20,7 @@
 
 #include "io/accumulation_io.h"
 #include "run_whisker.h"
+#include "sanitized.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -117,11 +118,7 @@ TEST_F(Shards, ResumeContinuesExactlyAndACompletePartIsNotRenderedAgain) {
 TEST_F(Shards, AKilledRenderResumesFromItsCheckpointExactly) {
   // Enough passes that the kill below lands before the last one (a pass
   // takes about 10 ms in Release, 10x that under a sanitizer).
-#ifdef WHISKER_SANITIZED
-  const std::string frames = "30";
-#else
-  const std::string frames = "120";
-#endif
+  const std::string frames = std::to_string(release_or_sanitized(120, 30));
   render("--spp 1 --frames " + frames + " --out-float " + f("full.pfm"));
   // Killed (SIGKILL, no chance to clean up) once the first checkpoint is there.
   const std::string cmd = std::string(WHISKER_BIN) + " --headless --quiet --threads 2 --scene " +

@@ -31,7 +31,7 @@ gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
 function(whisker_viewer_script_test name script timeout)
   add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/${script} $<TARGET_FILE:whisker>)
   set_tests_properties(${name} PROPERTIES
-    SKIP_RETURN_CODE 77 TIMEOUT ${timeout} LABELS "viewer;waits")
+    SKIP_RETURN_CODE 77 TIMEOUT ${timeout} LABELS viewer)
 endfunction()
 
 # Real mouse and keyboard input through xdotool (skipped without it).
