@@ -9,9 +9,9 @@
 #include "render/estimator.h"
 #include "render/light_cache.h"
 #include "render/progressive.h"
-#include "scene/world.h"
 #include "render/quick_passes.h"
 #include "scene/scene_io.h"
+#include "scene/world.h"
 #include "render_util.h"
 
 using namespace whisker;

@@ -93,7 +93,8 @@ TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
   TileResult result;
   const FlushDenormals ftz;
   std::vector<PixelSum> sums(static_cast<std::size_t>(pixels));
-  for (int p = 0; p < pixels; ++p) sums[std::size_t(p)] = start_sum(tile, pixel_index(cam, t.i0 + p / cols, t.j0 + p % cols));
+  for (int p = 0; p < pixels; ++p)
+    sums[std::size_t(p)] = start_sum(tile, pixel_index(cam, t.i0 + p / cols, t.j0 + p % cols));
   for (int k = 0; k < tile.spp; ++k) {
     if (abandoned(tile, result)) return result;
     const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
