@@ -110,6 +110,44 @@ TileResult render_tile_by_sample(const PathContext& ctx, const CameraFrame& cam,
   return result;
 }
 
+// Whether every sample is one path (no split, no path reuse): fig 8's
+// estimator, the report's.
+bool one_path_per_sample(const RenderSettings& s) {
+  return !reuses_paths(s) && std::all_of(s.split.begin(), s.split.end(), [](int f) { return f <= 1; });
+}
+
+// render_tile() for one path per sample without light caches: a pixel's
+// samples kLanes at a time, side by side (trace_paths): 1.10x on fig 8's
+// settings, the same sums bit for bit. (With splitting the paths' work is in
+// their branches, and lanes of camera paths measured 1 % slower.)
+TileResult render_tile_in_lanes(const PathContext& ctx, const CameraFrame& cam,
+                                const TileWork& tile, Film& film) {
+  const PixelBlock& t = tile.pixels;
+  TileResult result;
+  const FlushDenormals ftz;
+  for (int i = t.i0; i < t.i1; ++i) {
+    for (int j = t.j0; j < t.j1; ++j) {
+      const Pixel px{i, j};
+      PixelSum sum = start_sum(tile, pixel_index(cam, i, j));
+      for (int k = 0; k < tile.spp; k += kLanes) {
+        if (abandoned(tile, result)) return result;
+        const int n = std::min(kLanes, tile.spp - k);
+        const std::uint64_t first = tile.first_sample + std::uint64_t(k);
+        PathState path[kLanes];
+        Sampler sampler[kLanes];
+        for (int l = 0; l < n; ++l) {
+          sampler[l] = pixel_sampler(ctx.settings, cam, px, first + std::uint64_t(l));
+          path[l] = PathState{camera_ray(ctx, cam, px, sampler[l])};
+        }
+        trace_paths(ctx, path, sampler, n);
+        for (int l = 0; l < n; ++l) sum.add(path[l].L, first + std::uint64_t(l));
+      }
+      finish_sum(tile, pixel_index(cam, i, j), sum, film, result);
+    }
+  }
+  return result;
+}
+
 }  // namespace
 
 TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
@@ -118,6 +156,7 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
   const PixelBlock& t = tile.pixels;
   const bool reuse = reuses_paths(s);
   if (tile.light_caches && !reuse) return render_tile_by_sample(ctx, cam, tile, film);
+  if (one_path_per_sample(s)) return render_tile_in_lanes(ctx, cam, tile, film);
   const int side = reuse ? std::min(s.reuse, kMaxReuse) : 1;
   TileResult result;
   const FlushDenormals ftz;

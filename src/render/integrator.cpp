@@ -1,5 +1,6 @@
 #include "render/integrator.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "render/direct_light.h"
@@ -10,46 +11,88 @@
 
 namespace whisker {
 
-vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler) {
+namespace {
+
+// One hit of a path: `hit`, the closest hit of state.ray. Adds what the hit
+// gives to state.L; returns whether the path goes on, along state.ray.
+// Inlined in both loops below: a call here measured 1-2 % on the defaults.
+[[gnu::always_inline]] inline bool path_step(const PathContext& ctx, PathState& state,
+                                             const Hit& hit, Sampler& sampler) {
   const RenderSettings& settings = ctx.settings;
   Ray& ray = state.ray;
   vec3& beta = state.beta;
-  const vec3& L = state.L;
+  const Material& m = ctx.world.material(hit);
+  if (m.kind == MaterialKind::Diffuse) {
+    // A path that can carry no more light ends here (the walls' albedos
+    // are pure primaries): its light and bounce would both be multiplied
+    // by zero. It changes the time, not the estimate, and is decided
+    // before the hit record is made.
+    beta *= m.albedo;
+    if (ends_dark(settings, beta)) return false;
+  }
+  SurfaceHit h;
+  ctx.world.record(ray, hit, h);
+  if (m.kind != MaterialKind::Diffuse) state.from = {};  // no light path passes a mirror
+  if (m.kind == MaterialKind::Mirror) {
+    ray = sample_mirror(ray, h);
+    return true;
+  }
+  if (m.kind != MaterialKind::Diffuse) {  // glass, or a hollow ball's shells
+    ray = sample_glass(ray, h, m.ior, settings.fresnel, sampler);
+    return true;
+  }
+  const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, sampler);
+  if (!next) return false;
+  ray = *next;
+  return true;
+}
+
+}  // namespace
+
+vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler) {
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
-  for (; state.depth <= settings.max_depth; ++state.depth) {
+  for (; state.depth <= ctx.settings.max_depth; ++state.depth) {
     Hit hit;
     if (state.first_hit) {  // the caller found this ray's hit already
       hit = *state.first_hit;
       state.first_hit = nullptr;
     } else {
       ++ctx.stats.rays;
-      if (!ctx.world.closest(ray, hit)) break;
+      if (!ctx.world.closest(state.ray, hit)) break;
     }
-    const Material& m = ctx.world.material(hit);
-    if (m.kind == MaterialKind::Diffuse) {
-      // A path that can carry no more light ends here (the walls' albedos
-      // are pure primaries): its light and bounce would both be multiplied
-      // by zero. It changes the time, not the estimate, and is decided
-      // before the hit record is made.
-      beta *= m.albedo;
-      if (ends_dark(settings, beta)) return L;
-    }
-    SurfaceHit h;
-    ctx.world.record(ray, hit, h);
-    if (m.kind != MaterialKind::Diffuse) state.from = {};  // no light path passes a mirror
-    if (m.kind == MaterialKind::Mirror) {
-      ray = sample_mirror(ray, h);
-      continue;
-    }
-    if (m.kind != MaterialKind::Diffuse) {  // glass, or a hollow ball's shells
-      ray = sample_glass(ray, h, m.ior, settings.fresnel, sampler);
-      continue;
-    }
-    const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, sampler);
-    if (!next) return L;
-    ray = *next;
+    if (!path_step(ctx, state, hit, sampler)) break;
   }
-  return L;
+  return state.L;
+}
+
+void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, int count) {
+  assert(count <= kLanes);
+  const int max_depth = ctx.settings.max_depth;
+  unsigned live = 0;  // bit k: path k goes on (trace_path()'s loop condition)
+  for (int k = 0; k < count; ++k)
+    if (paths[k].depth <= max_depth) live |= 1u << k;
+  while (live) {
+    // All the closest hits first, then all the shading: a path's hit and
+    // its shading depend on each other, the paths do not. (Shading each
+    // path right after its hit measured 3.5 % slower.)
+    Hit hits[kLanes];
+    for (unsigned a = live; a; a &= a - 1) {
+      const int k = __builtin_ctz(a);
+      PathState& p = paths[k];
+      if (p.first_hit) {
+        hits[k] = *p.first_hit;
+        p.first_hit = nullptr;
+        continue;
+      }
+      ++ctx.stats.rays;
+      if (!ctx.world.closest(p.ray, hits[k])) live &= ~(1u << k);
+    }
+    for (unsigned a = live; a; a &= a - 1) {
+      const int k = __builtin_ctz(a);
+      if (!path_step(ctx, paths[k], hits[k], samplers[k]) || ++paths[k].depth > max_depth)
+        live &= ~(1u << k);
+    }
+  }
 }
 
 DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,

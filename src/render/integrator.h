@@ -87,6 +87,16 @@ Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler
 // stall per path).
 vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler);
 
+// Up to kLanes independent paths traced side by side, each left with its
+// light in paths[k].L: a hit at a time, the closest hits of all found
+// before any is shaded. One path is a chain of dependent latencies (a hit,
+// its shading, the next ray); with several in flight the processor
+// overlaps one path's work with another's (docs/PERFORMANCE.md). Each path
+// draws the same numbers, gathers the same light and counts the same rays
+// as trace_path() alone.
+inline constexpr int kLanes = 8;
+void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, int count);
+
 // Whether a path of throughput beta ends here (RenderSettings::zero_cutoff):
 // it can carry no more light, so its light and bounces would all be zero.
 inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
