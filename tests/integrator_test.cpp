@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/mesh.h"
+#include "render/estimator.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
 #include "render/splitting.h"
@@ -280,5 +281,51 @@ TEST(TracePaths, SideBySideEqualsOneAtATime) {
     }
     EXPECT_EQ(rays_lanes, rays_one) << c.scene;
     EXPECT_GT(lit, 200u) << c.scene;  // the comparisons are of light, not of zeros
+  }
+}
+
+// render_tile() for one path per sample traces kLanes (pixel, sample) pairs
+// at a time, a group straddling pixels when the tile's samples are not a
+// multiple of kLanes: the film still gets each pixel's samples added one at
+// a time in order, as sample_pixel() gives them, bit for bit, and nothing
+// outside the tile.
+TEST(TracePaths, TileInLanesAddsEachPixelsSamplesInOrder) {
+  Scene scene = sized("cat", 21, 13, 1, 1);
+  scene.settings.indirect = scene.settings.aa = true;
+  scene.settings.connect = false;
+  scene.settings.split = {1};
+  scene.settings.reuse = 1;
+  const World world(scene);
+  const CameraFrame cam(scene.camera);
+  const PixelBlock block{2, 11, 3, 19};
+  for (const int spp : {1, 3, kLanes, 11}) {
+    Film lanes, one;
+    lanes.reset(21, 13);
+    one.reset(21, 13);
+    PathStats stats;
+    const PathContext ctx{world, scene.settings, stats};
+    TileWork tile;
+    tile.pixels = block;
+    tile.first_sample = 5;
+    tile.spp = spp;
+    const TileResult r = render_tile(ctx, cam, tile, lanes);
+    EXPECT_FALSE(r.abandoned);
+    for (int i = block.i0; i < block.i1; ++i)
+      for (int j = block.j0; j < block.j1; ++j) {
+        PixelSum s;
+        for (int k = 0; k < spp; ++k) {
+          const std::uint64_t sample = tile.first_sample + std::uint64_t(k);
+          Sampler sampler = pixel_sampler(scene.settings, cam, Pixel{i, j}, sample);
+          s.add(sample_pixel(ctx, cam, Pixel{i, j}, sampler), sample);
+        }
+        one.add(std::uint32_t(i * 21 + j), s);
+      }
+    Snapshot a, b;
+    lanes.publish(a);
+    one.publish(b);
+    EXPECT_EQ(a.sum, b.sum) << spp;
+    EXPECT_EQ(a.sum_sq, b.sum_sq) << spp;
+    EXPECT_EQ(a.odd_sum, b.odd_sum) << spp;
+    EXPECT_GT(*std::max_element(a.sum.begin(), a.sum.end()), 0.0) << spp;
   }
 }

@@ -112,6 +112,7 @@ Sampler::Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, st
   } else {
     reversed_index_ = reverse_bits(std::uint32_t(sample));
     key_ = std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel));
+    slot_ = std::uint8_t(pixel % kSeedSlots);
   }
 }
 
@@ -129,8 +130,10 @@ namespace {
 
 // The scrambling seeds depend only on the pixel's key and the dimension, not
 // on the sample: one pixel's samples (consecutive in a tile) share them. Each
-// thread keeps the last pixel's seeds, so the hashes run once per pixel
-// instead of three times per 2D request.
+// thread keeps the seeds of the last pixels, one per slot (the pixel's index
+// mod kSeedSlots, so the paths of up to kSeedSlots consecutive pixels traced
+// side by side each keep theirs), and the hashes run once per pixel instead
+// of three times per 2D request.
 constexpr std::uint32_t kCachedPairs = 16;
 struct PixelSeeds {
   std::uint32_t key = 0;
@@ -145,8 +148,9 @@ void pair_seeds(std::uint32_t key, std::uint32_t dim, std::uint32_t out[3]) {
   out[2] = hash32(out[0], 2);
 }
 
-const PixelSeeds& pixel_seeds(std::uint32_t key) {
-  thread_local PixelSeeds cache;
+const PixelSeeds& pixel_seeds(std::uint32_t key, std::uint32_t slot) {
+  thread_local PixelSeeds slots[kSeedSlots];
+  PixelSeeds& cache = slots[slot];
   if (cache.valid && cache.key == key) return cache;
   cache.key = key;
   cache.valid = true;
@@ -158,7 +162,7 @@ const PixelSeeds& pixel_seeds(std::uint32_t key) {
 }  // namespace
 
 void Sampler::sobol2d(float& u, float& v) {
-  const PixelSeeds& seeds = pixel_seeds(key_);
+  const PixelSeeds& seeds = pixel_seeds(key_, slot_);
   if (dim_ < 2) {
     // The first four dimensions (pixel jitter and the first bounce, or the
     // first Fresnel choice) are one 4D Sobol point: the index is shuffled

@@ -43,6 +43,10 @@ class Rng {
 // scrambled with its own per-pixel seed. A 1D request takes a pair's first
 // coordinate.
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
+
+// How many pixels' scrambling seeds a thread keeps (sampler.cpp): as many as
+// the paths traced side by side (integrator.h, kLanes).
+inline constexpr std::uint32_t kSeedSlots = 8;
 std::uint32_t sobol_dim1(std::uint32_t index);
 
 // What the estimator draws its numbers from: independent uniforms (the
@@ -77,6 +81,7 @@ class Sampler {
   void sobol2d(float& u, float& v);
 
   SamplerKind kind_ = SamplerKind::Independent;
+  std::uint8_t slot_ = 0;  // Sobol only: which of the thread's cached pixel seeds (sampler.cpp)
   Rng rng_;                           // Independent only
   std::uint32_t reversed_index_ = 0;  // Sobol only: the sample index, bits reversed
   std::uint32_t key_ = 0;             // Sobol only: per-pixel scrambling seed
