@@ -120,7 +120,7 @@ bool one_path_per_sample(const RenderSettings& s) {
 // render_tile() for one path per sample without light caches: the tile's
 // (pixel, sample) pairs, a pixel's samples in order, kLanes at a time side
 // by side (trace_paths; a group may straddle pixels, as with the viewer's
-// passes of one sample): 1.09x on fig 8's settings, 1.18x on passes of one
+// passes of one sample): 1.09x on fig 8's settings, 1.08x on passes of one
 // sample, the same sums bit for bit. (With splitting the paths' work is in
 // their branches, and lanes of camera paths measured 1 % slower.)
 TileResult render_tile_in_lanes(const PathContext& ctx, const CameraFrame& cam,
