@@ -29,9 +29,9 @@ bool cheap_differs(const RenderSettings& s);
 
 // A tile's pixels and the pass's samples of each: numbers first_sample to
 // first_sample + spp - 1. `abandon`, asked before every sample of a block
-// (every kLanes paths where paths run side by side), says the
-// pass is being dropped (a stop or an edit): a tile of a pass of 65536
-// samples takes minutes, and a stop must not wait for it.
+// (every kLanes paths where paths run side by side), says the pass is being
+// dropped (a stop or an edit): a tile of a pass of 65536 samples takes
+// minutes, and a stop must not wait for it.
 struct TileWork {
   PixelBlock pixels;
   std::uint64_t first_sample = 0;

@@ -43,11 +43,11 @@ class Rng {
 // scrambled with its own per-pixel seed. A 1D request takes a pair's first
 // coordinate.
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
+std::uint32_t sobol_dim1(std::uint32_t index);
 
 // How many pixels' scrambling seeds a thread keeps (sampler.cpp): as many as
 // the paths traced side by side (integrator.h, kLanes).
 inline constexpr std::uint32_t kSeedSlots = 8;
-std::uint32_t sobol_dim1(std::uint32_t index);
 
 // What the estimator draws its numbers from: independent uniforms (the
 // report's method) or the scrambled Sobol points.
