@@ -95,6 +95,7 @@ vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler);
 // draws the same numbers, gathers the same light and counts the same rays
 // as trace_path() alone.
 inline constexpr int kLanes = 8;
+static_assert(kSeedSlots >= std::uint32_t(kLanes), "each lane's pixel keeps its Sobol seeds");
 void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, int count);
 
 // Whether a path of throughput beta ends here (RenderSettings::zero_cutoff):
