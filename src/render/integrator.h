@@ -93,7 +93,7 @@ vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler);
 // its shading, the next ray); with several in flight the processor
 // overlaps one path's work with another's (docs/PERFORMANCE.md). Each path
 // draws the same numbers, gathers the same light and counts the same rays
-// as trace_path() alone.
+// as alone (trace_path() is the group of one).
 inline constexpr int kLanes = 8;
 static_assert(kSeedSlots >= std::uint32_t(kLanes), "each lane's pixel keeps its Sobol seeds");
 void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, int count);
