@@ -101,6 +101,51 @@ TEST(LightCache, PicksOnlyEntriesThatShareAChannel) {
   EXPECT_EQ(cache.pick(6u, 0.0f), nullptr);
 }
 
+// A vertex on a wall of the cat's room, reached from the room, leaves out
+// the entries on that wall (none can be connected to it): with them left
+// out, M_c' even steps pick every other entry of its channels once and none
+// on the wall, and M / M_c' is the factor. The floor, lit from above, holds
+// some of the blue entries, so a floor vertex's factor is larger than its
+// channels' alone.
+TEST(LightCache, LeavesOutTheSphereOfTheVertex) {
+  const Scene scene = sized("cat", 8, 8, 1, 1);
+  const World world(scene);
+  LightCache cache;
+  std::uint64_t rays = 0;
+  cache.build(world, scene.settings, 3, rays);
+  int walls_with_entries = 0;
+  for (unsigned channels = 1; channels < 8; ++channels) {
+    const int all = int(std::lround(float(LightCache::kPaths) / cache.density_scale(channels)));
+    for (std::uint32_t wall = 0; wall < 6; ++wall) {
+      const float scale = cache.density_scale(channels, wall);
+      ASSERT_GE(scale, cache.density_scale(channels)) << channels << " " << wall;
+      const int left = int(std::lround(float(LightCache::kPaths) / scale));
+      std::set<const CachedLightVertex*> distinct;
+      for (int k = 0; k < left; ++k) {
+        const CachedLightVertex* e = cache.pick(channels, (float(k) + 0.5f) / float(left), wall);
+        ASSERT_NE(e, nullptr);
+        EXPECT_NE(e->sphere, wall) << channels;
+        EXPECT_NE(channel_bits(e->albedo) & channels, 0u) << channels;
+        distinct.insert(e);
+      }
+      EXPECT_EQ(int(distinct.size()), left) << channels << " " << wall;
+      // What was left out is exactly the wall's entries: picked without
+      // leaving anything out, `all` even steps meet all - left of them.
+      int on_wall = 0;
+      for (int k = 0; k < all; ++k)
+        on_wall += cache.pick(channels, (float(k) + 0.5f) / float(all))->sphere == wall ? 1 : 0;
+      EXPECT_EQ(on_wall, all - left) << channels << " " << wall;
+      walls_with_entries += on_wall > 0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(walls_with_entries, 6);
+  const std::uint32_t floor = 1;  // assets/scenes/cat.json: ceiling, floor, front, ...
+  ASSERT_EQ(world.material(Hit{.kind = PrimKind::Sphere, .prim = floor}).albedo, vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_GT(cache.density_scale(4u, floor), cache.density_scale(4u) * 1.1f);
+  EXPECT_EQ(cache.density_scale(4u, kNoSkip), cache.density_scale(4u));
+  EXPECT_EQ(cache.density_scale(4u, 1000u), cache.density_scale(4u));  // no such sphere
+}
+
 // A sample's cache is a function of the seed and the sample number: built
 // twice it is the same, and the next sample's differs.
 TEST(LightCache, DependsOnTheSeedAndSampleOnly) {

@@ -106,7 +106,8 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
   // The light path is chosen first, so that a cached one is read from
   // memory while the shadow ray and the bounces run.
   const bool connect = settings.connect && bounces;
-  const LightPick pick = connect ? pick_light_path(ctx, state.beta, sampler) : LightPick{};
+  const LightPick pick =
+      connect ? pick_light_path(ctx, state.beta, sampler, hidden_sphere(in, h)) : LightPick{};
   const DirectLight direct = add_direct_light(ctx, in, h, state.beta, state.from);
   state.L += direct.L;
   if (!bounces) return std::nullopt;

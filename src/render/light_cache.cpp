@@ -1,5 +1,6 @@
 #include "render/light_cache.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -58,8 +59,35 @@ void LightCache::build(const World& world, const RenderSettings& settings, std::
       if (c & bits) lists_[c].push_back(std::uint32_t(entries_.size()));
     entries_.push_back(e);
   }
-  for (unsigned c = 0; c < 8; ++c)
-    scale_[c] = lists_[c].empty() ? 0.0f : float(kPaths) / float(lists_[c].size());
+  // Each list grouped by sphere (a stable counting sort: triangles, kNoSkip,
+  // sort last), and the runs of the spheres.
+  std::uint32_t spheres = 0;
+  for (const CachedLightVertex& e : entries_)
+    if (e.sphere != kNoSkip) spheres = std::max(spheres, e.sphere + 1);
+  std::vector<std::uint32_t> sorted;
+  for (unsigned c = 0; c < 8; ++c) {
+    std::vector<std::uint32_t>& list = lists_[c];
+    scale_[c] = list.empty() ? 0.0f : float(kPaths) / float(list.size());
+    std::vector<Run>& runs = runs_[c];
+    runs.assign(spheres, Run{});
+    if (list.empty()) continue;
+    for (std::uint32_t k : list)
+      if (entries_[k].sphere != kNoSkip) ++runs[entries_[k].sphere].count;
+    std::uint32_t start = 0;
+    for (Run& r : runs) {
+      r.start = start;
+      start += r.count;
+      const std::size_t left = list.size() - r.count;
+      r.scale = left == 0 ? 0.0f : float(kPaths) / float(left);
+    }
+    sorted.assign(list.size(), 0);
+    std::uint32_t triangles = start;
+    std::vector<std::uint32_t> next(spheres);
+    for (std::uint32_t s = 0; s < spheres; ++s) next[s] = runs[s].start;
+    for (std::uint32_t k : list)
+      sorted[entries_[k].sphere == kNoSkip ? triangles++ : next[entries_[k].sphere]++] = k;
+    list.swap(sorted);
+  }
 }
 
 }  // namespace whisker

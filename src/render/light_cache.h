@@ -16,6 +16,14 @@
 // p_l M / M_c for x's channels, in the bounces' weights and the picked
 // entry's alike, so the weights of a path still sum to 1 (Veach 1997, 9.2.2).
 //
+// A vertex on a sphere, reached from outside it, also leaves out the entries
+// on that sphere: every point of a sphere lies on or below the tangent plane
+// at another, so none of them can be connected to it, and none of its
+// bounces can reach one. It picks among the M_c' entries left and weighs by
+// M_c' / M; with p_l M / M_c' in the balance heuristic for it and its
+// bounces, the weights of each of its paths still sum to 1, and the picks
+// the zero connections took go to entries that can bring light.
+//
 // The caches of different samples are independent, so the error they share
 // across pixels falls with the samples like any other.
 #pragma once
@@ -68,20 +76,41 @@ class LightCache {
              std::uint64_t& rays);
 
   // The entry picked by u in [0, 1) among those that share a channel with
-  // `channels`, or nullptr if none does.
-  const CachedLightVertex* pick(unsigned channels, float u) const {
+  // `channels` and do not lie on sphere `exclude` (kNoSkip: leave none
+  // out), or nullptr if there is none.
+  const CachedLightVertex* pick(unsigned channels, float u, std::uint32_t exclude = kNoSkip) const {
     const std::vector<std::uint32_t>& list = lists_[channels & 7u];
-    if (list.empty()) return nullptr;
-    const std::size_t k = std::min(list.size() - 1, std::size_t(u * float(list.size())));
+    const Run r = run(channels, exclude);
+    const std::size_t n = list.size() - r.count;
+    if (n == 0) return nullptr;
+    std::size_t k = std::min(n - 1, std::size_t(u * float(n)));
+    if (k >= r.start) k += r.count;  // past the left-out run
     return &entries_[list[k]];
   }
-  // M / M_c for `channels` (0 when no entry shares one: then light paths
-  // make none of that vertex's paths).
-  float density_scale(unsigned channels) const { return scale_[channels & 7u]; }
+  // M / M_c' for `channels` and `exclude` (0 when no entry is left: then
+  // light paths make none of that vertex's paths).
+  float density_scale(unsigned channels, std::uint32_t exclude = kNoSkip) const {
+    const std::vector<Run>& runs = runs_[channels & 7u];
+    return exclude < runs.size() ? runs[exclude].scale : scale_[channels & 7u];
+  }
 
  private:
+  // The entries of one sphere in a channel list: where they start, how
+  // many, and M / M_c' with them left out.
+  struct Run {
+    std::uint32_t start = 0, count = 0;
+    float scale = 0.0f;
+  };
+  Run run(unsigned channels, std::uint32_t exclude) const {
+    const std::vector<Run>& runs = runs_[channels & 7u];
+    return exclude < runs.size() ? runs[exclude] : Run{};
+  }
   std::vector<CachedLightVertex> entries_;
+  // Per channel set, the entries sharing one of its channels, grouped by
+  // the sphere they lie on (in sphere order, triangles last; within a
+  // group in the order of their strata), and each sphere's run.
   std::vector<std::uint32_t> lists_[8];
+  std::vector<Run> runs_[8];
   float scale_[8] = {};
 };
 

@@ -25,14 +25,15 @@ SegmentEnd segment_end(const ConnectionVertex& x, const CachedLightVertex& e, co
 
 }  // namespace
 
-LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler) {
+LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler,
+                          std::uint32_t exclude) {
   LightPick pick;
   float u1, u2;  // one 2D request (a stratified pair); the first number picks
   sampler.get2d(u1, u2);
   if (!ctx.lights) return pick;
   const unsigned channels = channel_bits(beta);
-  pick.scale = ctx.lights->density_scale(channels);
-  pick.entry = ctx.lights->pick(channels, u1);
+  pick.scale = ctx.lights->density_scale(channels, exclude);
+  pick.entry = ctx.lights->pick(channels, u1, exclude);
   if (pick.entry) __builtin_prefetch(pick.entry);
   return pick;
 }

@@ -93,8 +93,15 @@ struct LightPick {
   const CachedLightVertex* entry = nullptr;
   float scale = 0.0f;
 };
-// Draws two numbers for the vertex of throughput beta (its albedo in it).
-LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler);
+// Draws two numbers for the vertex of throughput beta (its albedo in it);
+// `exclude` is the sphere the vertex lies on if the ray came from outside
+// it (kNoSkip otherwise), whose entries it cannot see (light_cache.h).
+LightPick pick_light_path(const PathContext& ctx, const vec3& beta, Sampler& sampler,
+                          std::uint32_t exclude = kNoSkip);
+// That sphere for the recorded hit h of the ray `in`.
+inline std::uint32_t hidden_sphere(const Ray& in, const SurfaceHit& h) {
+  return h.sphere != kNoSkip && glm::dot(in.d, h.outward) < 0.0f ? h.sphere : kNoSkip;
+}
 
 // The light path `pick` connected to x: the light it brings there, weighted
 // (see above; the throughput applied). Counts its rays.
