@@ -9,7 +9,8 @@ mse_by_scale); TIMES one line per process: "name spp seed seconds". The MSE of
 one image is half the MSE between the two seeds' images.
 
 Prints the table (rows: scales; columns: estimators) and the headline (the
-worst scale of each estimator); exits 1 when the first estimator (the
+worst scale of each estimator), and leaves OUT/check.json for the check
+render (check(), below); exits 1 when the first estimator (the
 defaults) reaches the target later than no-reuse at some scale by more than
 TOLERANCE, unless SAME says the two rendered the same images.
 Only the standard library.
@@ -103,6 +104,11 @@ def main():
         print(f"worst scale of {n}: {k} px, {need:.0f} spp in {secs:.2f} s -> {ratio:.1f}x less than "
               f"the report program ({report_1024:.0f} s)")
     print(f"headline (the defaults at their worst scale): {worst[names[0]][1][2]:.1f}x")
+    # For the check render (cat_target.sh): the samples the defaults need at
+    # their worst scale, the targets and the report program's time.
+    with open(f"{out}/check.json", "w") as f:
+        json.dump({"name": names[0], "need": max(results[names[0]][k][0] for k in scales),
+                   "target": {str(k): target[k] for k in scales}, "report_1024": report_1024}, f)
 
     if "no-reuse" in results and names[0] != "no-reuse":
         if same:
@@ -116,5 +122,26 @@ def main():
     return 0
 
 
+def check():
+    """time_to_error.py check OUT SPP SECONDS: whether the defaults' render at
+    SPP (OUT/check-SPP.json, the two seeds compared) reaches the target at
+    every scale. Prints the verdict; exits 0 when it does, else prints the
+    next count to try on its last line and exits 3."""
+    out, spp, secs = sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
+    c = json.load(open(f"{out}/check.json"))
+    j = json.load(open(f"{out}/check-{spp}.json"))
+    over = {k: j["mse_by_scale"][k] / 2 / t for k, t in c["target"].items()}
+    k = max(over, key=over.get)
+    print(f"check render: the defaults at {spp} spp, {secs:.2f} s: MSE over the target "
+          + ", ".join(f"{s} px {r:.3f}" for s, r in over.items()))
+    if over[k] <= 1.0:
+        print(f"headline (checked render): {spp} spp in {secs:.2f} s reach the target at every scale -> "
+              f"{c['report_1024'] / secs:.1f}x less than the report program ({c['report_1024']:.0f} s)")
+        return 0
+    # MSE falls about as 1/spp^1.2 here; at least one more sample.
+    print(max(spp + 1, math.ceil(spp * over[k] ** (1 / 1.2))))
+    return 3
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(check() if len(sys.argv) > 1 and sys.argv[1] == "check" else main())
