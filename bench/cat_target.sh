@@ -31,8 +31,8 @@
 #    time (the line through the measured times), against the report program's.
 # 4. The check render (the headline): the defaults rendered at the count
 #    step 3 gives for their worst scale, and at more samples until both
-#    seeds' images reach the target at every scale; its time against the
-#    report program's.
+#    seeds' images reach the target at every scale; that count's time (the
+#    line of step 3) against the report program's.
 #
 # CONFIGS: estimators separated by ';', each "name|whisker flags|spp counts".
 # The first is the defaults (the scene's settings); the one named no-reuse is
@@ -136,8 +136,9 @@ python3 "$ROOT/bench/time_to_error.py" "$OUT" "$TIMES" "$CONFIGS" "$SCALES" \
 # points are best stratified at powers of two, so 28 spp lie above the line
 # through 16 and 32), so the defaults are rendered at it, rounded up, with
 # both seeds, and at more samples until the two images reach the target at
-# every scale. Its count and time (the mean of the seeds' whole-process wall
-# times) are the headline.
+# every scale. That count is the headline, with its time from the line
+# through the timings of step 2, which ran interleaved with the report
+# program's (the check renders' own times are printed too).
 defaults_flags=$(IFS='|' read -r _ f _ <<<"${CONFIG_LIST[0]}"; echo "$f")
 check_spp=$(python3 -c "import json, math, sys; print(math.ceil(json.load(open(sys.argv[1]))['need']))" "$OUT/check.json")
 for _ in 1 2 3 4 5 6; do

@@ -53,6 +53,7 @@ def main():
     print()
 
     results = {}  # name -> {k: (spp, seconds, ratio)}
+    lines = {}  # name -> (a, b): seconds = a + b spp
     for name, _flags, counts in configs:
         counts = sorted(int(s) for s in counts.split())
         pts = [(s, mse(name, s), mean(times[(name, s)])) for s in counts]
@@ -85,6 +86,7 @@ def main():
             secs = a + b * need
             row[k] = (need, secs, report_1024 / secs)
         results[name] = row
+        lines[name] = (a, b)
 
     names = [c[0] for c in configs]
     print("| box filter | " + " | ".join(f"{n} ({c[1] or 'the scene' + chr(39) + 's settings'})" for n, c in zip(names, configs)) + " |")
@@ -108,7 +110,8 @@ def main():
     # their worst scale, the targets and the report program's time.
     with open(f"{out}/check.json", "w") as f:
         json.dump({"name": names[0], "need": max(results[names[0]][k][0] for k in scales),
-                   "target": {str(k): target[k] for k in scales}, "report_1024": report_1024}, f)
+                   "target": {str(k): target[k] for k in scales}, "report_1024": report_1024,
+                   "line": lines[names[0]]}, f)
 
     if "no-reuse" in results and names[0] != "no-reuse":
         if same:
@@ -124,19 +127,25 @@ def main():
 
 def check():
     """time_to_error.py check OUT SPP SECONDS: whether the defaults' render at
-    SPP (OUT/check-SPP.json, the two seeds compared) reaches the target at
-    every scale. Prints the verdict; exits 0 when it does, else prints the
-    next count to try on its last line and exits 3."""
+    SPP (OUT/check-SPP.json, the two seeds compared; SECONDS its time)
+    reaches the target at every scale. Prints the verdict; exits 0 when it
+    does, else prints the next count to try on its last line and exits 3.
+    The headline's time for SPP is read off the line through the defaults'
+    timings, which ran interleaved with the report program's; the check
+    renders run after them, at other moments of a shared machine."""
     out, spp, secs = sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
     c = json.load(open(f"{out}/check.json"))
     j = json.load(open(f"{out}/check-{spp}.json"))
     over = {k: j["mse_by_scale"][k] / 2 / t for k, t in c["target"].items()}
     k = max(over, key=over.get)
-    print(f"check render: the defaults at {spp} spp, {secs:.2f} s: MSE over the target "
+    print(f"check render: the defaults at {spp} spp ({secs:.2f} s): MSE over the target "
           + ", ".join(f"{s} px {r:.3f}" for s, r in over.items()))
     if over[k] <= 1.0:
-        print(f"headline (checked render): {spp} spp in {secs:.2f} s reach the target at every scale -> "
-              f"{c['report_1024'] / secs:.1f}x less than the report program ({c['report_1024']:.0f} s)")
+        a, b = c["line"]
+        t = a + b * spp
+        print(f"headline (checked render): {spp} spp in {t:.2f} s reach the target at every scale -> "
+              f"{c['report_1024'] / t:.1f}x less than the report program ({c['report_1024']:.0f} s); "
+              f"the time from the line through the interleaved timings")
         return 0
     # MSE falls about as 1/spp^1.2 here; at least one more sample.
     print(max(spp + 1, math.ceil(spp * over[k] ** (1 / 1.2))))
