@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""bench/time_to_error.py's arithmetic on made-up measurements (no render,
+no timing): the report program's target and time, the interpolated count
+and time per scale, the check render's verdict, its next count and the
+headline's time from the line through the interleaved timings.
+
+    time_to_error_test.py ROOT
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = sys.argv[1]
+SCRIPT = os.path.join(ROOT, "bench", "time_to_error.py")
+failures = []
+
+
+def check(cond, what):
+    if not cond:
+        failures.append(what)
+        print("FAIL:", what)
+
+
+def run(*args):
+    p = subprocess.run([sys.executable, SCRIPT, *map(str, args)], capture_output=True, text=True)
+    return p.returncode, p.stdout
+
+
+def compare_json(path, mse):  # whisker-compare's output: MSE between the two seeds' images
+    with open(path, "w") as f:
+        json.dump({"mse_by_scale": {str(k): 2 * v for k, v in mse.items()}}, f)
+
+
+with tempfile.TemporaryDirectory() as out:
+    scales = [1, 16]
+    # The report's program at 16 spp: MSE 0.064 at 1 px (0.001 at 1024 spp),
+    # 0.0064 at 16 px; 1 s at 2 spp, 8 s at 16 spp: 1024 spp in 1 + 1022 x 0.5 = 512 s.
+    compare_json(f"{out}/report-16.json", {1: 0.064, 16: 0.0064})
+    # One estimator with MSE 0.032 / spp at 1 px and 0.0032 / spp at 16 px
+    # (slope -1), 0.1 s + 0.25 s per sample: both targets at 32 spp, 8.1 s.
+    compare_json(f"{out}/defaults-16.json", {1: 0.002, 16: 0.0002})
+    compare_json(f"{out}/defaults-64.json", {1: 0.0005, 16: 0.00005})
+    with open(f"{out}/times.txt", "w") as f:
+        f.write("report 16 101 8.0\nreport 16 202 8.0\nreport 2 101 1.0\nreport 2 202 1.0\n")
+        f.write("defaults 16 101 4.1\ndefaults 16 202 4.1\ndefaults 64 101 16.1\ndefaults 64 202 16.1\n")
+    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)
+    print(text)
+    check(code == 0, "main mode exits 0")
+    check("1024 spp take 512.0 s" in text, "the report program's time for 1024 spp")
+    check("| 1 px | 32 spp, 8.10 s, 63.2x |" in text, "the 1-px row: 32 spp on the line 0.1 + 0.25 spp")
+    c = json.load(open(f"{out}/check.json"))
+    check(abs(c["need"] - 32.0) < 1e-9, "check.json: the count the worst scale needs")
+    check(abs(c["line"][0] - 0.1) < 1e-9 and abs(c["line"][1] - 0.25) < 1e-9, "check.json: the line")
+    check(abs(c["target"]["16"] - 0.0001) < 1e-12, "check.json: the 16-px target")
+
+    # The check render at 32 spp misses the target at 16 px by 10 %: not
+    # reached; the next count is 32 x 1.1^(1/1.2), rounded up: 35.
+    compare_json(f"{out}/check-32.json", {1: 0.0009, 16: 0.00011})
+    code, text = run("check", out, 32, 9.0)
+    print(text)
+    check(code == 3, "a render above the target at one scale is not the headline")
+    check(text.strip().splitlines()[-1] == str(math.ceil(32 * 1.1 ** (1 / 1.2))), "the next count")
+    check("headline" not in text, "no headline before the target is reached")
+    # At 35 spp it is reached at every scale: the headline's time is the
+    # line's, 0.1 + 0.25 x 35 = 8.85 s (not the render's own 11 s), 512 / 8.85.
+    compare_json(f"{out}/check-35.json", {1: 0.0009, 16: 0.000099})
+    code, text = run("check", out, 35, 11.0)
+    print(text)
+    check(code == 0, "a render at the target at every scale passes")
+    check("headline (checked render): 35 spp in 8.85 s reach the target at every scale -> 57.9x" in text,
+          "the headline line, with the time from the line")
+
+print("FAILED" if failures else "PASSED", len(failures))
+sys.exit(1 if failures else 0)
