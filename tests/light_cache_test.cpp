@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 
 #include <glm/geometric.hpp>
@@ -144,6 +145,42 @@ TEST(LightCache, LeavesOutTheSphereOfTheVertex) {
   EXPECT_GT(cache.density_scale(4u, floor), cache.density_scale(4u) * 1.1f);
   EXPECT_EQ(cache.density_scale(4u, kNoSkip), cache.density_scale(4u));
   EXPECT_EQ(cache.density_scale(4u, 1000u), cache.density_scale(4u));  // no such sphere
+}
+
+// A scene of many spheres costs at most kRunSpheres runs a list: inside a
+// closed grey shell (sphere 0), 299 small grey balls (spheres 1-299) spread
+// over a sphere around the light. A vertex on a ball numbered below the bound leaves
+// its ball's entries out; past the bound it leaves none out (its picks may
+// land on its own ball, which then brings nothing: unbiased, as before the
+// rule), and every entry is still picked.
+TEST(LightCache, LeavesOutOnlySpheresBelowTheBound) {
+  Scene scene = closed_sphere(0.5f, vec3(0.0f), 2, 1, 4);
+  for (int k = 0; k < 299; ++k) {  // a Fibonacci sphere of radius 5, balls 0.6 wide about 1 apart
+    const double z = 1.0 - 2.0 * (k + 0.5) / 299.0, r = std::sqrt(1.0 - z * z);
+    const double a = k * kPi * (3.0 - std::sqrt(5.0));
+    scene.spheres.push_back({"ball", 5.0 * dvec3(r * std::cos(a), r * std::sin(a), z), 0.3f, 0.0f,
+                             {MaterialKind::Diffuse, vec3(0.5f)}});
+  }
+  const World world(scene);
+  LightCache cache;
+  std::uint64_t rays = 0;
+  cache.build(world, scene.settings, 3, rays);
+  const int all = int(std::lround(float(LightCache::kPaths) / cache.density_scale(1u)));
+  ASSERT_EQ(all, LightCache::kPaths);  // every light path meets the shell or a ball
+  std::map<std::uint32_t, int> on;  // entries per sphere
+  for (int k = 0; k < all; ++k) ++on[cache.pick(1u, (float(k) + 0.5f) / float(all))->sphere];
+  ASSERT_GT(on.size(), 280u);  // the shell and nearly every ball hold entries (about 4 a ball)
+  ASSERT_GT(on.rbegin()->first, LightCache::kRunSpheres);
+  for (const auto& [sphere, count] : on) {
+    const float expected = sphere < LightCache::kRunSpheres ? float(LightCache::kPaths) / float(all - count)
+                                                             : cache.density_scale(1u);
+    EXPECT_FLOAT_EQ(cache.density_scale(1u, sphere), expected) << sphere;
+  }
+  // Past the bound, a pick at the same u is the pick without leaving out.
+  for (int k = 0; k < 64; ++k) {
+    const float u = (float(k) + 0.5f) / 64.0f;
+    EXPECT_EQ(cache.pick(1u, u, on.rbegin()->first), cache.pick(1u, u)) << k;
+  }
 }
 
 // A sample's cache is a function of the seed and the sample number: built

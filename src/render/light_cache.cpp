@@ -59,20 +59,23 @@ void LightCache::build(const World& world, const RenderSettings& settings, std::
       if (c & bits) lists_[c].push_back(std::uint32_t(entries_.size()));
     entries_.push_back(e);
   }
-  // Each list grouped by sphere (a stable counting sort: triangles, kNoSkip,
-  // sort last), and the runs of the spheres.
+  // Each list grouped by sphere (a stable counting sort), and the runs of
+  // the spheres: those numbered below kRunSpheres, so that a scene of
+  // many spheres costs at most that many runs a list. Triangles, and the
+  // spheres past them (picks never leave those out), sort last.
   std::uint32_t spheres = 0;
   for (const CachedLightVertex& e : entries_)
-    if (e.sphere != kNoSkip) spheres = std::max(spheres, e.sphere + 1);
-  std::vector<std::uint32_t> sorted;
+    if (e.sphere < kRunSpheres) spheres = std::max(spheres, e.sphere + 1);
+  std::vector<std::uint32_t> sorted, next;
   for (unsigned c = 0; c < 8; ++c) {
     std::vector<std::uint32_t>& list = lists_[c];
-    scale_[c] = list.empty() ? 0.0f : float(kPaths) / float(list.size());
     std::vector<Run>& runs = runs_[c];
+    runs.clear();
+    scale_[c] = list.empty() ? 0.0f : float(kPaths) / float(list.size());
+    if (list.empty()) continue;  // no run: density_scale is scale_[c], 0
     runs.assign(spheres, Run{});
-    if (list.empty()) continue;
     for (std::uint32_t k : list)
-      if (entries_[k].sphere != kNoSkip) ++runs[entries_[k].sphere].count;
+      if (entries_[k].sphere < spheres) ++runs[entries_[k].sphere].count;
     std::uint32_t start = 0;
     for (Run& r : runs) {
       r.start = start;
@@ -81,11 +84,13 @@ void LightCache::build(const World& world, const RenderSettings& settings, std::
       r.scale = left == 0 ? 0.0f : float(kPaths) / float(left);
     }
     sorted.assign(list.size(), 0);
-    std::uint32_t triangles = start;
-    std::vector<std::uint32_t> next(spheres);
+    std::uint32_t rest = start;
+    next.resize(spheres);
     for (std::uint32_t s = 0; s < spheres; ++s) next[s] = runs[s].start;
-    for (std::uint32_t k : list)
-      sorted[entries_[k].sphere == kNoSkip ? triangles++ : next[entries_[k].sphere]++] = k;
+    for (std::uint32_t k : list) {
+      const std::uint32_t sphere = entries_[k].sphere;
+      sorted[sphere < spheres ? next[sphere]++ : rest++] = k;
+    }
     list.swap(sorted);
   }
 }

@@ -68,6 +68,9 @@ class LightCache {
  public:
   static constexpr int kSide = 64;  // strata per side of the unit square
   static constexpr int kPaths = kSide * kSide;
+  // Spheres whose entries a pick can leave out: those numbered below this
+  // (a run per sphere and channel set; the room's walls come first).
+  static constexpr std::uint32_t kRunSpheres = 256;
 
   LightCache() = default;
   // Traces the cache of sample `sample` (its directions depend only on the
