@@ -13,14 +13,17 @@ namespace {
 // Elsewhere the sphere is tested, and the segment's end short of y
 // (spawn_shadow_ray) keeps y from blocking itself: a light on a sphere sends
 // light paths to its far inside, which x outside it must not see.
-struct SegmentEnd {
-  vec3 p;
-  std::uint32_t sphere = kNoSkip;
-};
-SegmentEnd segment_end(const ConnectionVertex& x, const CachedLightVertex& e, const vec3& from_x) {
-  if (e.sphere == kNoSkip) return {offset_ray_origin(e.p, e.err, e.record_ng(), -from_x)};
-  if (x.h.sphere == e.sphere || glm::dot(e.outward(), from_x) < 0.0f) return {e.p, e.sphere};
-  return {e.p};
+// Returns the sphere left untested (kNoSkip: none) and writes the point to
+// `p`: a struct of both, built by three stores and read back by one 16-byte
+// load, stalled every connection on the store-to-load forward.
+std::uint32_t segment_end(const ConnectionVertex& x, const CachedLightVertex& e, const vec3& from_x,
+                          vec3& p) {
+  if (e.sphere == kNoSkip) {
+    p = offset_ray_origin(e.p, e.err, e.record_ng(), -from_x);
+    return kNoSkip;
+  }
+  p = e.p;
+  return x.h.sphere == e.sphere || glm::dot(e.outward(), from_x) < 0.0f ? e.sphere : kNoSkip;
 }
 
 }  // namespace
@@ -51,9 +54,10 @@ vec3 light_connection(const PathContext& ctx, const ConnectionVertex& x, const L
   const float A = cos_x * cos_y / r2;
   const float weight = light_path_factor(float(x.bounces), A, e.B * pick.scale);
   if (!(weight > 0.0f)) return vec3(0.0f);
-  const SegmentEnd end = segment_end(x, e, w);
+  vec3 end;
+  const std::uint32_t untested = segment_end(x, e, w, end);
   ++ctx.stats.rays;
-  if (ctx.world.occluded(spawn_shadow_ray(x.h, end.p), end.sphere)) return vec3(0.0f);
+  if (ctx.world.occluded(spawn_shadow_ray(x.h, end), untested)) return vec3(0.0f);
   return x.beta * e.albedo * (e.weight * weight);
 }
 
