@@ -19,6 +19,18 @@
 
 using namespace whisker;
 
+namespace {
+
+// Sample `sample`'s cache of a scene's world.
+LightCache built(const World& world, const Scene& scene, std::uint64_t sample) {
+  LightCache cache;
+  std::uint64_t rays = 0;
+  cache.build(world, scene.settings, sample, rays);
+  return cache;
+}
+
+}  // namespace
+
 // Inside a closed grey sphere every light path meets the shell, lit: all M
 // entries are kept (factor 1), each on the sphere, with the light's weight
 // I cos/(4 pi^2 d^2) (report section 2) and B = cos_l/(4 d^2), checked in
@@ -68,9 +80,7 @@ TEST(LightCache, EntriesAreTheLightPathsFirstHits) {
 TEST(LightCache, PicksOnlyEntriesThatShareAChannel) {
   const Scene scene = sized("cat", 8, 8, 1, 1);
   const World world(scene);
-  LightCache cache;
-  std::uint64_t rays = 0;
-  cache.build(world, scene.settings, 3, rays);
+  LightCache cache = built(world, scene, 3);
   for (unsigned channels = 1; channels < 8; ++channels) {
     const float scale = cache.density_scale(channels);
     // Some light paths meet walls of other colours; every wall has one.
@@ -95,7 +105,7 @@ TEST(LightCache, PicksOnlyEntriesThatShareAChannel) {
 
   const Scene red = closed_sphere(vec3(1.0f, 0.0f, 0.0f), vec3(1.0f, 2.0f, 0.0f), 2, 1, 4);
   const World red_world(red);
-  cache.build(red_world, red.settings, 3, rays);
+  cache = built(red_world, red, 3);
   EXPECT_EQ(cache.density_scale(1u), 1.0f);
   EXPECT_EQ(cache.density_scale(2u), 0.0f);
   EXPECT_EQ(cache.pick(2u, 0.5f), nullptr);
@@ -111,9 +121,7 @@ TEST(LightCache, PicksOnlyEntriesThatShareAChannel) {
 TEST(LightCache, LeavesOutTheSphereOfTheVertex) {
   const Scene scene = sized("cat", 8, 8, 1, 1);
   const World world(scene);
-  LightCache cache;
-  std::uint64_t rays = 0;
-  cache.build(world, scene.settings, 3, rays);
+  LightCache cache = built(world, scene, 3);
   int walls_with_entries = 0;
   for (unsigned channels = 1; channels < 8; ++channels) {
     const int all = int(std::lround(float(LightCache::kPaths) / cache.density_scale(channels)));
@@ -162,9 +170,7 @@ TEST(LightCache, LeavesOutOnlySpheresBelowTheBound) {
                              {MaterialKind::Diffuse, vec3(0.5f)}});
   }
   const World world(scene);
-  LightCache cache;
-  std::uint64_t rays = 0;
-  cache.build(world, scene.settings, 3, rays);
+  LightCache cache = built(world, scene, 3);
   const int all = int(std::lround(float(LightCache::kPaths) / cache.density_scale(1u)));
   ASSERT_EQ(all, LightCache::kPaths);  // every light path meets the shell or a ball
   std::map<std::uint32_t, int> on;  // entries per sphere
