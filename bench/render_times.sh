@@ -2,17 +2,24 @@
 # Render time of the report's scenes at the report's settings, headless, all
 # threads: median of R runs each. Not part of the test run.
 #   bench/render_times.sh [runs=3]       (build/ must be built)
-# Prints a markdown table; the cat at 1024 spp (fig 8) is run once, and the
-# report's own program (bench/report_program.sh) renders fig 8 in the same run,
-# right after it: measured at 1024 spp with REPORT_FULL=1 (~10 minutes), else
-# from its times at REPORT_SMALL (4) and REPORT_SPP (64) samples per pixel,
-# t(1024) = t(S) + (1024 - S) x the time per sample between the two.
+# Prints a markdown table; the cat at 1024 spp (fig 8) is run once with each
+# sampler: the report's independent random numbers (`--sampler independent`,
+# the report's settings in full: the same estimator and the same error per
+# sample as the report's program) and Whisker's default Sobol points (half
+# that error at equal samples; docs/PERFORMANCE.md). The report's own program
+# (bench/report_program.sh) renders fig 8 in the same run, right after them:
+# measured at 1024 spp with REPORT_FULL=1 (~10 minutes), else from the
+# medians of REPORT_RUNS (3) runs each at REPORT_SMALL (4) and REPORT_SPP (64)
+# samples per pixel, t(1024) = t(S) + (1024 - S) x the time per sample between
+# the two (the extrapolation multiplies a timing's noise by 16: one run of
+# each moved it by up to a fifth from run to run).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 source bench/report_program.sh
 runs=${1:-3}
 REPORT_SPP=${REPORT_SPP:-64}
 REPORT_SMALL=${REPORT_SMALL:-4}
+REPORT_RUNS=${REPORT_RUNS:-3}
 THREADS=${THREADS:-$(nproc)}
 bin=${WHISKER_BUILD:-build}/whisker
 out=$(mktemp -d)
@@ -49,17 +56,23 @@ row three-balls-fresnel "$runs" --scene three-balls-fresnel --frames 64 --spp 16
 row indirect "$runs" --scene indirect --frames 2 --spp 16
 row antialiased-ball "$runs" --scene antialiased-ball --frames 2 --spp 16
 row cat-brute 1 --scene cat-brute --frames 1
-row "cat (fig 8)" 1 --scene cat --frames 64 --spp 16
+row "cat (fig 8)" 1 --scene cat --frames 64 --spp 16 --sampler independent
+row "cat (fig 8, Sobol)" 1 --scene cat --frames 64 --spp 16 --sampler sobol
 
 report_program_build "$out" >/dev/null
 if [ "${REPORT_FULL:-0}" = 1 ]; then
   rt=$(report_program_run "$REPORT_CAT" 1024 1 "$out/r.pfm")
   how="measured at 1024 spp"
 else
-  t_small=$(report_program_run "$REPORT_CAT" "$REPORT_SMALL" 1 "$out/r.pfm")
-  t_spp=$(report_program_run "$REPORT_CAT" "$REPORT_SPP" 1 "$out/r.pfm")
+  small=() big=()
+  for ((k = 0; k < REPORT_RUNS; k++)); do
+    small+=("$(report_program_run "$REPORT_CAT" "$REPORT_SMALL" 1 "$out/r.pfm")")
+    big+=("$(report_program_run "$REPORT_CAT" "$REPORT_SPP" 1 "$out/r.pfm")")
+  done
+  t_small=$(printf '%s\n' "${small[@]}" | median)
+  t_spp=$(printf '%s\n' "${big[@]}" | median)
   rt=$(python3 -c "print(f'{$t_spp + (1024 - $REPORT_SPP) * ($t_spp - $t_small) / ($REPORT_SPP - $REPORT_SMALL):.1f}')")
-  how="from its times at $REPORT_SMALL spp ($t_small s) and $REPORT_SPP spp ($t_spp s)"
+  how="from the medians of its times at $REPORT_SMALL spp (${small[*]} s) and $REPORT_SPP spp (${big[*]} s)"
 fi
 echo
 echo "the report's program (bugs mended), fig 8 at 1024 spp, $THREADS threads: $rt s ($how)"

@@ -73,5 +73,20 @@ with tempfile.TemporaryDirectory() as out:
     check("headline (checked render): 35 spp in 8.85 s reach the target at every scale -> 57.9x" in text,
           "the headline line, with the time from the line")
 
+    # Two pairs of seeds: their mean MSE decides. At 33 spp the first pair
+    # is 4 % above the 16-px target and the second 6 % below: the mean,
+    # 0.99 of it, reaches the target (time 0.1 + 0.25 x 33 = 8.35 s).
+    compare_json(f"{out}/check-33.json", {1: 0.0009, 16: 0.000104})
+    compare_json(f"{out}/check-33-b.json", {1: 0.0009, 16: 0.000094})
+    code, text = run("check", out, 33, 10.0)
+    print(text)
+    check(code == 0, "two pairs: their mean MSE at the target at every scale passes")
+    check("2 pair(s) of seeds" in text and "16 px 0.990" in text, "two pairs: the mean's ratio")
+    check("33 spp in 8.35 s" in text, "two pairs: the headline's count and time")
+    # The first pair alone would have missed.
+    os.remove(f"{out}/check-33-b.json")
+    code, text = run("check", out, 33, 10.0)
+    check(code == 3 and "16 px 1.040" in text, "one pair 4 % above the target: not reached")
+
 print("FAILED" if failures else "PASSED", len(failures))
 sys.exit(1 if failures else 0)
