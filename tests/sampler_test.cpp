@@ -124,40 +124,6 @@ TEST(Sampler, IndependentUniformsHaveTheRightMoments) {
   EXPECT_NEAR(s2 / n, 1.0 / 3, 5 * std::sqrt(4.0 / 45 / n));
 }
 
-// A 2D request of the independent sampler takes both numbers from one
-// 64-bit output (Rng::uniform2): each coordinate must be uniform and the two
-// independent. Chi-square of 2^18 points in 16 x 16 cells (255 degrees of
-// freedom: mean 255, standard deviation 22.6; 400 is 6.4 of them), the
-// correlation of u and v, and of v with the next request's v.
-TEST(Sampler, IndependentPairsAreUniformAndUncorrelated) {
-  const int n = 1 << 18;
-  std::vector<int> cells(256, 0);
-  double su = 0, sv = 0, suv = 0, suu = 0, svv = 0, sw = 0, svw = 0;
-  for (int i = 0; i < n; ++i) {
-    Sampler s(SamplerKind::Independent, std::uint32_t(i % 512), std::uint64_t(i / 512), 7);
-    float u, v, w, x;
-    s.get2d(u, v);
-    s.get2d(w, x);
-    ASSERT_GE(u, 0.0f);
-    ASSERT_LT(u, 1.0f);
-    ASSERT_GE(v, 0.0f);
-    ASSERT_LT(v, 1.0f);
-    ++cells[std::size_t(int(u * 16) * 16 + int(v * 16))];
-    su += u; sv += v; suv += double(u) * v; suu += double(u) * u; svv += double(v) * v;
-    sw += x; svw += double(v) * x;
-  }
-  const double expect = double(n) / 256;
-  double chi2 = 0;
-  for (int c : cells) chi2 += (c - expect) * (c - expect) / expect;
-  EXPECT_LT(chi2, 400.0);
-  EXPECT_NEAR(sv / n, 0.5, 5 * std::sqrt(1.0 / 12 / n));
-  EXPECT_NEAR(svv / n, 1.0 / 3, 5 * std::sqrt(4.0 / 45 / n));
-  // Uncorrelated: 5 standard deviations of a correlation from n pairs.
-  const double var = 1.0 / 12;
-  EXPECT_LT(std::fabs((suv / n - su / n * sv / n) / var), 5 / std::sqrt(double(n)));
-  EXPECT_LT(std::fabs((svw / n - sv / n * sw / n) / var), 5 / std::sqrt(double(n)));
-}
-
 TEST(Sampler, SameInputsSameNumbers) {
   for (auto kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
     Sampler a(kind, 10, 20, 30), b(kind, 10, 20, 30), c(kind, 10, 21, 30);

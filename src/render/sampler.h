@@ -30,15 +30,6 @@ class Rng {
   }
   // Uniform in [0, 1): the top 24 bits, so 1 is never returned.
   float uniform() { return float(next_u64() >> 40) * 0x1p-24f; }
-  // Two uniforms in [0, 1) from one output: its top 24 bits and the 24
-  // below them (every bit of SplitMix64's output is uniform, and the bits
-  // of one output independent as far as its tests tell: Steele, Lea and
-  // Flood, "Fast splittable pseudorandom number generators", OOPSLA 2014).
-  void uniform2(float& u, float& v) {
-    const std::uint64_t r = next_u64();
-    u = float(r >> 40) * 0x1p-24f;
-    v = float((r >> 16) & 0xffffffu) * 0x1p-24f;
-  }
 
  private:
   std::uint64_t state_ = 0;
@@ -73,7 +64,8 @@ class Sampler {
   }
   void get2d(float& u, float& v) {
     if (kind_ == SamplerKind::Independent) {
-      rng_.uniform2(u, v);
+      u = rng_.uniform();
+      v = rng_.uniform();
       return;
     }
     sobol2d(u, v);
