@@ -36,9 +36,13 @@ def main():
         times[(name, int(spp))].append(float(secs))
     mean = lambda xs: sum(xs) / len(xs)
 
-    def mse(name, spp):
-        j = json.load(open(f"{out}/{name}-{spp}.json"))
-        return {k: j["mse_by_scale"][str(k)] / 2 for k in scales}
+    def pairs(name, spp):  # the MSE between the seeds of each pair rendered
+        paths = [f"{out}/{name}-{spp}.json", f"{out}/{name}-{spp}-b.json"]
+        return [json.load(open(p))["mse_by_scale"] for p in paths if os.path.exists(p)]
+
+    def mse(name, spp):  # of one image: half the MSE between two seeds, mean over the pairs
+        ms = pairs(name, spp)
+        return {k: sum(m[str(k)] for m in ms) / len(ms) / 2 for k in scales}
 
     # The report's program: plain Monte Carlo, MSE proportional to 1/spp.
     rep = mse("report", report_spp)
@@ -49,7 +53,8 @@ def main():
     else:
         report_1024 = t_spp + (1024 - report_spp) * (t_spp - t_small) / (report_spp - report_small)
         how = f"from its times at {report_small} spp ({t_small:.2f} s) and {report_spp} spp ({t_spp:.2f} s)"
-    print(f"report's program: 1024 spp take {report_1024:.1f} s ({how}); target MSE per scale: "
+    print(f"report's program: 1024 spp take {report_1024:.1f} s ({how}); target MSE per scale "
+          f"({len(pairs('report', report_spp))} pair(s) of seeds): "
           + ", ".join(f"{k} px {target[k]:.3e}" for k in scales))
     print()
 

@@ -55,6 +55,16 @@ with tempfile.TemporaryDirectory() as out:
     check(abs(c["need"] - 32.0) < 1e-9, "check.json: the count the worst scale needs")
     check(abs(c["line"][0] - 0.1) < 1e-9 and abs(c["line"][1] - 0.25) < 1e-9, "check.json: the line")
     check(abs(c["target"]["16"] - 0.0001) < 1e-12, "check.json: the 16-px target")
+    # A second pair of the report's seeds: the target is the mean of the
+    # pairs' (0.0064 and 0.0032 at 16 px: 0.0048 x 16 / 1024 = 7.5e-5).
+    compare_json(f"{out}/report-16-b.json", {1: 0.064, 16: 0.0032})
+    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)
+    c2 = json.load(open(f"{out}/check.json"))
+    check(code == 0 and "(2 pair(s) of seeds)" in text, "two pairs of the report's seeds")
+    check(abs(c2["target"]["16"] - 7.5e-5) < 1e-12 and abs(c2["target"]["1"] - 0.001) < 1e-12,
+          "two pairs: the target is the mean of the pairs'")
+    os.remove(f"{out}/report-16-b.json")
+    run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)  # check.json as before
 
     # The check render at 32 spp misses the target at 16 px by 10 %: not
     # reached; the next count is 32 x 1.1^(1/1.2), rounded up: 35.
