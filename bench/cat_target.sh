@@ -18,8 +18,8 @@
 #
 # 1. The report's program (built from its source, its two bugs mended so that
 #    it converges to Whisker's image; bench/report_program.sh) at REPORT_SPP
-#    with two seeds (and, untimed, the two of CHECK_SEEDS: the target is the
-#    mean of the two pairs'). Plain Monte Carlo with independent pixels, so its MSE at
+#    with two seeds (and, untimed, the pairs of CHECK_SEEDS: the target is the
+#    mean of all pairs'). Plain Monte Carlo with independent pixels, so its MSE at
 #    1024 spp is MSE(REPORT_SPP) * REPORT_SPP / 1024 at every scale. Its time
 #    for 1024 spp: measured directly with REPORT_FULL=1 (~8 minutes),
 #    otherwise from its times at REPORT_SMALL and REPORT_SPP samples,
@@ -32,7 +32,7 @@
 #    time (the line through the measured times), against the report program's.
 # 4. The check render (the headline): the defaults rendered at the count
 #    step 3 gives for their worst scale, and at more samples until the
-#    images reach the target at every scale (the mean MSE of two pairs of
+#    images reach the target at every scale (the mean MSE of four pairs of
 #    seeds); that count's time (the line of step 3) against the report
 #    program's.
 #
@@ -45,7 +45,8 @@
 #
 # Knobs: WHISKER_BUILD, REPORT_SPP (16), REPORT_SMALL (2), REPORT_FULL (0),
 # REPORT_PROGRAM_DIR, CONFIGS, SEEDS ("101 202": exactly two), CHECK_SEEDS
-# (the check render's second pair, "303 404"; empty: one pair), THREADS (2),
+# (more pairs for the target and the check render, "303 404 505 606 707
+# 808"; empty: SEEDS alone), THREADS (2),
 # SCALES ("1 2 4 8 16"), TOLERANCE, CAT_OUT (output dir, default
 # $BUILD/cat-target; every image and JSON stays there).
 set -euo pipefail
@@ -58,8 +59,9 @@ REPORT_SMALL=${REPORT_SMALL:-2}
 REPORT_FULL=${REPORT_FULL:-0}
 CONFIGS=${CONFIGS:-"defaults||16 32;no-reuse|--reuse 1|16 32;reuse-4|--reuse 4 --split 4,2|8 32;no-connect|--connect off|24 48"}
 read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
-CHECK_SEEDS=${CHECK_SEEDS-303 404}
-read -r SEED_C SEED_D <<<"$CHECK_SEEDS"
+CHECK_SEEDS=${CHECK_SEEDS-303 404 505 606 707 808}
+read -r -a EXTRA <<<"$CHECK_SEEDS"
+[ $((${#EXTRA[@]} % 2)) -eq 0 ] || { echo "CHECK_SEEDS: pairs of seeds, got '$CHECK_SEEDS'" >&2; exit 2; }
 THREADS=${THREADS:-2}
 SCALES=${SCALES:-"1 2 4 8 16"}
 TOLERANCE=${TOLERANCE:-0.1}
@@ -105,14 +107,23 @@ for seed in "$SEED_A" "$SEED_B"; do
   done
   echo "report $REPORT_SMALL $seed $(report_program_run "$REPORT_CAT" "$REPORT_SMALL" "$seed" "$OUT/report-$REPORT_SMALL-$seed.pfm")" >>"$TIMES"
 done
-# The report program's second pair of seeds (CHECK_SEEDS), for its target:
-# one pair's 16-px MSE spreads by several per cent. Not timed (its times
-# above are).
-if [ -n "$CHECK_SEEDS" ]; then
-  for seed in "$SEED_C" "$SEED_D"; do
-    report_program_run "$REPORT_CAT" "$REPORT_SPP" "$seed" "$OUT/report-$REPORT_SPP-$seed.pfm" >/dev/null
+# The report program's further pairs of seeds (CHECK_SEEDS), for its
+# target: one pair's 16-px MSE spreads by several per cent. Not timed (its
+# times above are).
+for seed in "${EXTRA[@]}"; do
+  report_program_run "$REPORT_CAT" "$REPORT_SPP" "$seed" "$OUT/report-$REPORT_SPP-$seed.pfm" >/dev/null
+done
+# compare_pairs TAG: TAG-SEED.pfm of the pairs of CHECK_SEEDS compared into
+# TAG-p2.json, TAG-p3.json, ... (time_to_error.py takes the mean with
+# TAG.json, the pair of SEEDS); stale ones of an earlier run removed.
+compare_pairs() {
+  local tag=$1 k
+  rm -f "$OUT/$tag"-p[0-9]*.json
+  for ((k = 0; k < ${#EXTRA[@]}; k += 2)); do
+    "$COMPARE" "$OUT/$tag-${EXTRA[k]}.pfm" "$OUT/$tag-${EXTRA[k + 1]}.pfm" \
+      --scales "$scales_csv" --json "$OUT/$tag-p$((k / 2 + 2)).json" >/dev/null
   done
-fi
+}
 if [ "$REPORT_FULL" = 1 ]; then
   echo "report 1024 $SEED_A $(report_program_run "$REPORT_CAT" 1024 "$SEED_A" "$OUT/report-1024-$SEED_A.pfm")" >>"$TIMES"
 fi
@@ -121,11 +132,7 @@ fi
 scales_csv=$(tr ' ' ',' <<<"$SCALES")
 "$COMPARE" "$OUT/report-$REPORT_SPP-$SEED_A.pfm" "$OUT/report-$REPORT_SPP-$SEED_B.pfm" \
   --scales "$scales_csv" --json "$OUT/report-$REPORT_SPP.json" >/dev/null
-rm -f "$OUT/report-$REPORT_SPP-b.json"
-if [ -n "$CHECK_SEEDS" ]; then
-  "$COMPARE" "$OUT/report-$REPORT_SPP-$SEED_C.pfm" "$OUT/report-$REPORT_SPP-$SEED_D.pfm" \
-    --scales "$scales_csv" --json "$OUT/report-$REPORT_SPP-b.json" >/dev/null
-fi
+compare_pairs "report-$REPORT_SPP"
 for config in "${CONFIG_LIST[@]}"; do
   IFS='|' read -r name flags counts <<<"$config"
   for spp in $counts; do
@@ -153,10 +160,10 @@ python3 "$ROOT/bench/time_to_error.py" "$OUT" "$TIMES" "$CONFIGS" "$SCALES" \
 # The check render: the interpolated count is only an estimate (the Sobol
 # points are best stratified at powers of two, so 28 spp lie above the line
 # through 16 and 32), so the defaults are rendered at it, rounded up, with
-# both seeds, and at more samples until the two images reach the target at
-# every scale (judged on the mean MSE of two pairs of seeds, SEEDS and
+# every pair of seeds, and at more samples until the images reach the
+# target at every scale (judged on the mean MSE of the pairs, SEEDS and
 # CHECK_SEEDS: an MSE from the 1024 blocks of 16 px of one pair spreads by
-# about 4 %, and the worst of five noisy scales reads high). That count is
+# about 5 %, and the worst of five noisy scales reads high). That count is
 # the headline, with its time from the line
 # through the timings of step 2, which ran interleaved with the report
 # program's (the check renders' own times are printed too).
@@ -167,13 +174,8 @@ for _ in 1 2 3 4 5 6; do
   tb=$(render "check-$check_spp" "$check_spp" "$SEED_B" "$defaults_flags")
   "$COMPARE" "$OUT/check-$check_spp-$SEED_A.pfm" "$OUT/check-$check_spp-$SEED_B.pfm" \
     --scales "$scales_csv" --json "$OUT/check-$check_spp.json" >/dev/null
-  rm -f "$OUT/check-$check_spp-b.json"
-  if [ -n "$CHECK_SEEDS" ]; then
-    render "check-$check_spp" "$check_spp" "$SEED_C" "$defaults_flags" >/dev/null
-    render "check-$check_spp" "$check_spp" "$SEED_D" "$defaults_flags" >/dev/null
-    "$COMPARE" "$OUT/check-$check_spp-$SEED_C.pfm" "$OUT/check-$check_spp-$SEED_D.pfm" \
-      --scales "$scales_csv" --json "$OUT/check-$check_spp-b.json" >/dev/null
-  fi
+  for seed in "${EXTRA[@]}"; do render "check-$check_spp" "$check_spp" "$seed" "$defaults_flags" >/dev/null; done
+  compare_pairs "check-$check_spp"
   secs=$(python3 -c "import sys; print((float(sys.argv[1]) + float(sys.argv[2])) / 2)" "$ta" "$tb")
   verdict=$(python3 "$ROOT/bench/time_to_error.py" check "$OUT" "$check_spp" "$secs") && { echo "$verdict"; break; }
   echo "$verdict" | sed '$d'

@@ -15,12 +15,22 @@ defaults) reaches the target later than no-reuse at some scale by more than
 TOLERANCE, unless SAME says the two rendered the same images.
 Only the standard library.
 """
+import glob
 import json
 import math
 import os
 import statistics
 import sys
 from collections import defaultdict
+
+
+def pairs(out, tag):
+    """whisker-compare's mse_by_scale of every pair of seeds rendered for
+    TAG: OUT/TAG.json (the pair of SEEDS), then OUT/TAG-p2.json, -p3, ...
+    (the pairs of CHECK_SEEDS), in that order."""
+    found = [f"{out}/{tag}.json"] + sorted(glob.glob(f"{out}/{tag}-p[0-9]*.json"),
+                                          key=lambda p: int(p.rsplit("-p", 1)[1][:-5]))
+    return [json.load(open(p))["mse_by_scale"] for p in found if os.path.exists(p)]
 
 
 def main():
@@ -36,12 +46,8 @@ def main():
         times[(name, int(spp))].append(float(secs))
     mean = lambda xs: sum(xs) / len(xs)
 
-    def pairs(name, spp):  # the MSE between the seeds of each pair rendered
-        paths = [f"{out}/{name}-{spp}.json", f"{out}/{name}-{spp}-b.json"]
-        return [json.load(open(p))["mse_by_scale"] for p in paths if os.path.exists(p)]
-
     def mse(name, spp):  # of one image: half the MSE between two seeds, mean over the pairs
-        ms = pairs(name, spp)
+        ms = pairs(out, f"{name}-{spp}")
         return {k: sum(m[str(k)] for m in ms) / len(ms) / 2 for k in scales}
 
     # The report's program: plain Monte Carlo, MSE proportional to 1/spp.
@@ -54,7 +60,7 @@ def main():
         report_1024 = t_spp + (1024 - report_spp) * (t_spp - t_small) / (report_spp - report_small)
         how = f"from its times at {report_small} spp ({t_small:.2f} s) and {report_spp} spp ({t_spp:.2f} s)"
     print(f"report's program: 1024 spp take {report_1024:.1f} s ({how}); target MSE per scale "
-          f"({len(pairs('report', report_spp))} pair(s) of seeds): "
+          f"({len(pairs(out, f'report-{report_spp}'))} pair(s) of seeds): "
           + ", ".join(f"{k} px {target[k]:.3e}" for k in scales))
     print()
 
@@ -133,20 +139,19 @@ def main():
 
 def check():
     """time_to_error.py check OUT SPP SECONDS: whether the defaults' render at
-    SPP (OUT/check-SPP.json, the two seeds compared, and OUT/check-SPP-b.json,
-    a second pair of seeds, when present: the MSE is their mean; SECONDS its
-    time) reaches the target at every scale. Prints the verdict; exits 0 when it
+    SPP (OUT/check-SPP.json, the two seeds compared, and OUT/check-SPP-p2.json,
+    ... for further pairs of seeds when present: the MSE is their mean;
+    SECONDS its time) reaches the target at every scale. Prints the verdict; exits 0 when it
     does, else prints the next count to try on its last line and exits 3.
     The headline's time for SPP is read off the line through the defaults'
     timings, which ran interleaved with the report program's; the check
     renders run after them, at other moments of a shared machine."""
     out, spp, secs = sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
     c = json.load(open(f"{out}/check.json"))
-    pairs = [json.load(open(p))["mse_by_scale"]
-             for p in (f"{out}/check-{spp}.json", f"{out}/check-{spp}-b.json") if os.path.exists(p)]
-    over = {k: sum(m[k] for m in pairs) / len(pairs) / 2 / t for k, t in c["target"].items()}
+    ms = pairs(out, f"check-{spp}")
+    over = {k: sum(m[k] for m in ms) / len(ms) / 2 / t for k, t in c["target"].items()}
     k = max(over, key=over.get)
-    print(f"check render: the defaults at {spp} spp ({secs:.2f} s; {len(pairs)} pair(s) of seeds): MSE over the target "
+    print(f"check render: the defaults at {spp} spp ({secs:.2f} s; {len(ms)} pair(s) of seeds): MSE over the target "
           + ", ".join(f"{s} px {r:.3f}" for s, r in over.items()))
     if over[k] <= 1.0:
         a, b = c["line"]

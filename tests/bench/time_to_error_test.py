@@ -57,13 +57,13 @@ with tempfile.TemporaryDirectory() as out:
     check(abs(c["target"]["16"] - 0.0001) < 1e-12, "check.json: the 16-px target")
     # A second pair of the report's seeds: the target is the mean of the
     # pairs' (0.0064 and 0.0032 at 16 px: 0.0048 x 16 / 1024 = 7.5e-5).
-    compare_json(f"{out}/report-16-b.json", {1: 0.064, 16: 0.0032})
+    compare_json(f"{out}/report-16-p2.json", {1: 0.064, 16: 0.0032})
     code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)
     c2 = json.load(open(f"{out}/check.json"))
     check(code == 0 and "(2 pair(s) of seeds)" in text, "two pairs of the report's seeds")
     check(abs(c2["target"]["16"] - 7.5e-5) < 1e-12 and abs(c2["target"]["1"] - 0.001) < 1e-12,
           "two pairs: the target is the mean of the pairs'")
-    os.remove(f"{out}/report-16-b.json")
+    os.remove(f"{out}/report-16-p2.json")
     run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)  # check.json as before
 
     # The check render at 32 spp misses the target at 16 px by 10 %: not
@@ -87,14 +87,19 @@ with tempfile.TemporaryDirectory() as out:
     # is 4 % above the 16-px target and the second 6 % below: the mean,
     # 0.99 of it, reaches the target (time 0.1 + 0.25 x 33 = 8.35 s).
     compare_json(f"{out}/check-33.json", {1: 0.0009, 16: 0.000104})
-    compare_json(f"{out}/check-33-b.json", {1: 0.0009, 16: 0.000094})
+    compare_json(f"{out}/check-33-p2.json", {1: 0.0009, 16: 0.000094})
     code, text = run("check", out, 33, 10.0)
     print(text)
     check(code == 0, "two pairs: their mean MSE at the target at every scale passes")
     check("2 pair(s) of seeds" in text and "16 px 0.990" in text, "two pairs: the mean's ratio")
     check("33 spp in 8.35 s" in text, "two pairs: the headline's count and time")
+    # A third pair 20 % above: the mean of the three, 1.060, misses.
+    compare_json(f"{out}/check-33-p3.json", {1: 0.0009, 16: 0.00012})
+    code, text = run("check", out, 33, 10.0)
+    check(code == 3 and "3 pair(s) of seeds" in text and "16 px 1.060" in text, "three pairs: their mean")
+    os.remove(f"{out}/check-33-p3.json")
     # The first pair alone would have missed.
-    os.remove(f"{out}/check-33-b.json")
+    os.remove(f"{out}/check-33-p2.json")
     code, text = run("check", out, 33, 10.0)
     check(code == 3 and "16 px 1.040" in text, "one pair 4 % above the target: not reached")
 
