@@ -8,7 +8,7 @@
 # estimator that moves error from fine grain into blotches gains at pixel
 # scale and loses at the blotches' scale, and a person sees the blotches.
 #
-#   bench/cat_target.sh            # ~8 minutes on the 2-core machine; quiet machine please
+#   bench/cat_target.sh            # ~11 minutes on the 2-core machine; quiet machine please
 #
 # Error without a reference image: two renders with independent seeds a and
 # b of an unbiased estimator have E|a - b|^2 = MSE_a + MSE_b, so the MSE of

@@ -13,7 +13,7 @@
 #   4. the viewer's passes per second and UI frame time on the cat at one
 #      path per sample (needs xvfb-run; skipped without it).
 #
-#   bench/side_by_side.sh          # ~12 minutes on the 2-core machine; quiet machine please
+#   bench/side_by_side.sh          # ~21 minutes on the 2-core machine; quiet machine please
 #
 # Knobs: RUNS (5), RAYS (../shared/bench/rays), WHISKER_BUILD (build), and
 # those of the two scripts it calls (BEST_SPP, REPORT_PROGRAM_DIR, ...).
