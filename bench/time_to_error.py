@@ -33,6 +33,13 @@ def pairs(out, tag):
     return [json.load(open(p))["mse_by_scale"] for p in found if os.path.exists(p)]
 
 
+def one_image_mse(out, tag):
+    """The MSE of one image per scale (keyed as whisker-compare writes them):
+    half the MSE between two seeds' images, the mean over TAG's pairs."""
+    ms = pairs(out, tag)
+    return {k: sum(m[k] for m in ms) / len(ms) / 2 for k in ms[0]}, len(ms)
+
+
 def main():
     out, times_path, configs, scales, report_spp, report_small, report_full, tol, same = sys.argv[1:10]
     scales = [int(k) for k in scales.split()]
@@ -46,9 +53,9 @@ def main():
         times[(name, int(spp))].append(float(secs))
     mean = lambda xs: sum(xs) / len(xs)
 
-    def mse(name, spp):  # of one image: half the MSE between two seeds, mean over the pairs
-        ms = pairs(out, f"{name}-{spp}")
-        return {k: sum(m[str(k)] for m in ms) / len(ms) / 2 for k in scales}
+    def mse(name, spp):
+        m, _ = one_image_mse(out, f"{name}-{spp}")
+        return {k: m[str(k)] for k in scales}
 
     # The report's program: plain Monte Carlo, MSE proportional to 1/spp.
     rep = mse("report", report_spp)
@@ -148,10 +155,10 @@ def check():
     renders run after them, at other moments of a shared machine."""
     out, spp, secs = sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
     c = json.load(open(f"{out}/check.json"))
-    ms = pairs(out, f"check-{spp}")
-    over = {k: sum(m[k] for m in ms) / len(ms) / 2 / t for k, t in c["target"].items()}
+    m, n_pairs = one_image_mse(out, f"check-{spp}")
+    over = {k: m[k] / t for k, t in c["target"].items()}
     k = max(over, key=over.get)
-    print(f"check render: the defaults at {spp} spp ({secs:.2f} s; {len(ms)} pair(s) of seeds): MSE over the target "
+    print(f"check render: the defaults at {spp} spp ({secs:.2f} s; {n_pairs} pair(s) of seeds): MSE over the target "
           + ", ".join(f"{s} px {r:.3f}" for s, r in over.items()))
     if over[k] <= 1.0:
         a, b = c["line"]
