@@ -172,37 +172,39 @@ viewer_test_setup() {  # BINARY tools...
   [ -x "$py" ] || py=python3
 }
 
-# Whether a client can connect to display :$1 (within about 5 s).
+# Whether a client can connect to display :$1, asked every 0.1 s for up to
+# $2 tries (default 50) while process $3 (if given) lives.
 x_answers() {
   local k probe=()
   if command -v xdpyinfo >/dev/null; then probe=(xdpyinfo)
   elif command -v xdotool >/dev/null; then probe=(xdotool getdisplaygeometry)
   else return 0; fi
-  for k in $(seq 50); do
+  for k in $(seq "${2:-50}"); do
     DISPLAY=:$1 "${probe[@]}" >/dev/null 2>&1 && return 0
+    [ -n "${3:-}" ] && ! kill -0 "$3" 2>/dev/null && return 1
     sleep 0.1
   done
   return 1
 }
 
 # Runs "$dir/drive.sh" in a fresh X server (1280x800) with these helpers,
-# for at most SECONDS (default 300). The server picks a free display number
-# itself (-displayfd), so tests started at once, here or from other
-# checkouts, never race for one as xvfb-run -a does.
+# for at most SECONDS (default 300). The display number is drawn at random
+# from 1000-30999 and given to the server: a server given its number checks
+# the lock file before it makes its socket, so one that finds the number
+# taken exits and touches nothing. (With -displayfd the server probes the
+# numbers from 0 itself, and two started at once could unlink each other's
+# socket: the viewer then failed with "Failed to open display :0" minutes
+# after the server had answered.)
 in_xvfb() {  # [seconds]
-  local xpid display= k try
-  for try in 1 2 3; do  # a server that loses a display number to another starting at once exits: again
-    Xvfb -displayfd 1 -screen 0 1280x800x24 -nolisten tcp >"$dir/xvfb.display" 2>>"$dir/xvfb.err" &
+  local xpid display= try
+  for try in $(seq 8); do
+    display=$((1000 + (RANDOM * 32768 + RANDOM) % 30000))
+    if [ -e "/tmp/.X$display-lock" ] || [ -e "/tmp/.X11-unix/X$display" ]; then display=; continue; fi
+    Xvfb ":$display" -screen 0 1280x800x24 -nolisten tcp 2>>"$dir/xvfb.err" &
     xpid=$!
-    for k in $(seq 300); do
-      display=$(head -1 "$dir/xvfb.display")
-      [ -n "$display" ] || ! kill -0 "$xpid" 2>/dev/null && break
-      sleep 0.1
-    done
-    # A server is only taken once a client gets through: one that took the
-    # display number of a server exiting at that moment can lose its
-    # socket to the old server's clean-up ("Failed to open display").
-    [ -n "$display" ] && x_answers "$display" && break
+    # Up to 30 s for a server to answer on a busy machine; one that exits
+    # (its number was taken meanwhile) is replaced at once.
+    x_answers "$display" 300 "$xpid" && break
     kill "$xpid" 2>/dev/null
     wait "$xpid" 2>/dev/null
     display=

@@ -24,8 +24,8 @@ gtest_discover_tests(viewer_window_tests DISCOVERY_TIMEOUT 60
 
 # whisker_viewer_script_test(NAME SCRIPT TIMEOUT): a window test driven by
 # xdotool from a shell script given the whisker binary; exit 77 (no xdotool
-# or Xvfb) skips it. Each starts its own X server on a display number the
-# server picks (tests/viewer_drive.sh, in_xvfb), so they run beside each
+# or Xvfb) skips it. Each starts its own X server on a display number drawn
+# at random (tests/viewer_drive.sh, in_xvfb), so they run beside each
 # other and beside the rest: they spend most of their time holding keys and
 # waiting for frames, a fraction of a core each (one render thread).
 function(whisker_viewer_script_test name script timeout)
