@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -246,4 +247,71 @@ TEST(Sphere, EightWideSetAgreesWithTheScalarTest) {
   }
   EXPECT_GT(agree, 99000);  // ties only where two walls meet
   std::printf("worst error / bound: %.3Lg\n", worst);
+}
+
+TEST(Sphere, BatchOfEightRaysAgreesWithOneAtATime) {
+  // intersect_batch() puts rays in the lanes instead of spheres: each lane
+  // must give intersect()'s answer bit for bit (the renderer's images do
+  // not change with it). Sets of at most eight spheres: the six walls with
+  // the hollow ball's two shells (1e-6 thick here: ties in double), and the
+  // walls alone. Rays from the room, and rays spawned on a sphere (skip,
+  // far_only, origins a float ULP off the surface: the near test).
+  std::vector<Sphere> walls_and_shell;
+  for (const Sphere& s : report_spheres())
+    if (s.radius > 100.0f) walls_and_shell.push_back(s);
+  ASSERT_EQ(walls_and_shell.size(), 6u);
+  const std::vector<Sphere> walls = walls_and_shell;
+  walls_and_shell.push_back({vec3(20.0f, 0.0f, 0.0f), 10.0f, false});
+  walls_and_shell.push_back({vec3(20.0f, 0.0f, 0.0f), 10.0f - 1e-6f, true});
+  std::mt19937 g(23);
+  std::uniform_real_distribution<float> u(-55.0f, 55.0f), unit(0.0f, 1.0f);
+  for (const std::vector<Sphere>* spheres : {&std::as_const(walls_and_shell), &walls}) {
+    const SphereSet set(*spheres);
+    ASSERT_TRUE(set.batchable());
+    int hits = 0, spawned_rays = 0;
+    for (int batch = 0; batch < 20000; ++batch) {
+      Ray rays[8];
+      const Ray* ptr[8];
+      float tmax[8];
+      for (int l = 0; l < 8; ++l) {
+        if (unit(g) < 0.5f) {
+          rays[l] = Ray{vec3(u(g), u(g) * 0.5f + 20.0f, u(g)), uniform_direction(g)};
+        } else {  // leaving a point on one of the spheres
+          const std::uint32_t k = std::uint32_t(g() % spheres->size());
+          const Sphere& s = (*spheres)[k];
+          const vec3 outward = uniform_direction(g);
+          const glm::dvec3 pd = glm::dvec3(s.center) + double(s.radius) * glm::dvec3(outward);
+          const vec3 p(pd), lo(pd - glm::dvec3(p));
+          const vec3 ng = s.inverted ? -outward : outward;
+          // Half of them with the sphere to skip, half as a bare origin on it.
+          rays[l] = spawn_from(p, ng, lo, unit(g) < 0.5f ? k : kNoSkip, outward, uniform_direction(g));
+          ++spawned_rays;
+        }
+        tmax[l] = unit(g) < 0.25f ? 100.0f * unit(g) : kInf;
+        ptr[l] = &rays[l];
+      }
+      const unsigned lanes = unsigned(g() & 0xffu);
+      float t[8];
+      std::uint32_t index[8];
+      const unsigned found = set.intersect_batch(ptr, lanes, tmax, t, index);
+      ASSERT_EQ(found & ~lanes, 0u);
+      for (int l = 0; l < 8; ++l) {
+        if (!(lanes >> l & 1u)) continue;
+        float t1 = kInf;
+        std::uint32_t i1 = 0;
+        const bool hit = set.intersect(rays[l], tmax[l], t1, i1);
+        ASSERT_EQ(hit, bool(found >> l & 1u)) << "batch " << batch << " lane " << l;
+        if (!hit) continue;
+        ++hits;
+        ASSERT_EQ(t[l], t1) << "batch " << batch << " lane " << l;
+        ASSERT_EQ(index[l], i1) << "batch " << batch << " lane " << l;
+      }
+    }
+    EXPECT_GT(hits, 50000);
+    EXPECT_GT(spawned_rays, 50000);
+  }
+  // Nine spheres are not a batch.
+  std::vector<Sphere> nine = walls_and_shell;
+  nine.push_back({vec3(-20.0f, 0.0f, 0.0f), 10.0f, false});
+  EXPECT_FALSE(SphereSet(nine).batchable());
 }

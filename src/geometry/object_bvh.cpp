@@ -65,6 +65,39 @@ bool ObjectBvh::intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const
   return found;
 }
 
+unsigned ObjectBvh::intersect_batch(const Ray* const* rays, unsigned lanes, Hit* hits,
+                                    const Bvh* mesh) const {
+  unsigned found = 0;
+  if (nodes_.size() != 1 || !leaves_[0].spheres.batchable()) {
+    for (unsigned a = lanes; a; a &= a - 1) {
+      const int l = __builtin_ctz(a);
+      if (intersect(*rays[l], hits[l], mesh)) found |= 1u << l;
+    }
+    return found;
+  }
+  // intersect_leaf(), its sphere step for all the lanes first.
+  const Leaf& leaf = leaves_[0];
+  float tmax[8], t[8];
+  std::uint32_t id[8];
+  for (unsigned a = lanes; a; a &= a - 1) {
+    const int l = __builtin_ctz(a);
+    tmax[l] = std::min(rays[l]->tmax, hits[l].t);
+  }
+  found = leaf.spheres.intersect_batch(rays, lanes, tmax, t, id);
+  for (unsigned a = found; a; a &= a - 1) {
+    const int l = __builtin_ctz(a);
+    hits[l].t = t[l];
+    hits[l].kind = PrimKind::Sphere;
+    hits[l].prim = id[l];
+  }
+  if (leaf.mesh && mesh)
+    for (unsigned a = lanes; a; a &= a - 1) {
+      const int l = __builtin_ctz(a);
+      if (mesh->intersect(*rays[l], hits[l])) found |= 1u << l;
+    }
+  return found;
+}
+
 bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
   if (nodes_.empty()) return false;
   // A single leaf (every scene of the report): its exact tests are all the

@@ -25,6 +25,11 @@ class ObjectBvh {
   // Sphere and prim = their index in `spheres`; the mesh's hits come from
   // `mesh`. Returns whether hit was updated.
   bool intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const;
+  // intersect(*rays[l], hits[l], mesh) for each lane l in `lanes` (l < 8);
+  // a scene of one leaf with at most eight spheres (the report's) meets its
+  // spheres eight rays at a time (SphereSet::intersect_batch). Returns the
+  // lanes whose hit was updated.
+  unsigned intersect_batch(const Ray* const* rays, unsigned lanes, Hit* hits, const Bvh* mesh) const;
   // Any hit in (ray.tmin, ray.tmax); `end_sphere` as in SphereSet::occluded.
   bool occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphere = kNoSkip) const;
 

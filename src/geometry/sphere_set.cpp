@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -41,14 +42,14 @@ namespace {
 // close to the sphere (|c| < 2^-10 r^2, within about r/2000 of it) that
 // float may get the sign of the near root wrong: the caller solves those
 // again in double.
-inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const float* r2,
-                    const float* near2, const float* idf, __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy,
-                    __m256 dz, __m256 tmin, __m256 tmax, __m256 skip, __m256 far_only,
-                    unsigned& near) {
-  const __m256 fx = _mm256_sub_ps(ox, _mm256_loadu_ps(cx));
-  const __m256 fy = _mm256_sub_ps(oy, _mm256_loadu_ps(cy));
-  const __m256 fz = _mm256_sub_ps(oz, _mm256_loadu_ps(cz));
-  const __m256 rr = _mm256_loadu_ps(r2);
+// The sphere data come as vectors: eight spheres (one ray broadcast), or
+// one sphere broadcast (eight rays, SphereSet::intersect_batch).
+inline __m256 hit_t(__m256 cx, __m256 cy, __m256 cz, __m256 rr, __m256 near2, __m256 idf,
+                    __m256 ox, __m256 oy, __m256 oz, __m256 dx, __m256 dy, __m256 dz, __m256 tmin,
+                    __m256 tmax, __m256 skip, __m256 far_only, unsigned& near) {
+  const __m256 fx = _mm256_sub_ps(ox, cx);
+  const __m256 fy = _mm256_sub_ps(oy, cy);
+  const __m256 fz = _mm256_sub_ps(oz, cz);
   const __m256 fd = _mm256_fmadd_ps(fx, dx, _mm256_fmadd_ps(fy, dy, _mm256_mul_ps(fz, dz)));
   const __m256 b = _mm256_sub_ps(_mm256_setzero_ps(), fd);
   const __m256 px = _mm256_fmadd_ps(b, dx, fx);
@@ -64,7 +65,7 @@ inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const flo
   const __m256 qnz = _mm256_cmp_ps(q, _mm256_setzero_ps(), _CMP_NEQ_OQ);
   const __m256 t0r = _mm256_and_ps(_mm256_div_ps(c, q), qnz);
   const __m256 inf = _mm256_set1_ps(kInf);
-  const __m256 self = _mm256_cmp_ps(_mm256_loadu_ps(idf), skip, _CMP_EQ_OQ);
+  const __m256 self = _mm256_cmp_ps(idf, skip, _CMP_EQ_OQ);
   // On the skipped sphere the near root is dropped, and the far one too
   // unless far_only: OR with the all-ones mask makes a NaN, which fails the
   // interval tests below.
@@ -72,7 +73,7 @@ inline __m256 hit_t(const float* cx, const float* cy, const float* cz, const flo
   const __m256 t1 = _mm256_or_ps(_mm256_max_ps(t0r, q), _mm256_andnot_ps(far_only, self));
   const __m256 absc = _mm256_andnot_ps(sign, c);
   near = unsigned(_mm256_movemask_ps(
-      _mm256_andnot_ps(self, _mm256_cmp_ps(absc, _mm256_loadu_ps(near2), _CMP_LT_OQ))));
+      _mm256_andnot_ps(self, _mm256_cmp_ps(absc, near2, _CMP_LT_OQ))));
   const __m256 ok0 = _mm256_and_ps(_mm256_cmp_ps(t0, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t0, tmax, _CMP_LT_OQ));
   const __m256 ok1 = _mm256_and_ps(_mm256_cmp_ps(t1, tmin, _CMP_GT_OQ), _mm256_cmp_ps(t1, tmax, _CMP_LT_OQ));
   __m256 t = _mm256_blendv_ps(_mm256_blendv_ps(inf, t1, ok1), t0, ok0);
@@ -157,7 +158,9 @@ int SphereSet::intersect_pass(const Ray& r, float tmax, float& t_out, std::uint3
   bool found = false;
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
-    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+    __m256 t = hit_t(_mm256_loadu_ps(&cx_[k]), _mm256_loadu_ps(&cy_[k]), _mm256_loadu_ps(&cz_[k]),
+                     _mm256_loadu_ps(&r2_[k]), _mm256_loadu_ps(&near2_[k]), _mm256_loadu_ps(&idf_[k]),
+                     ox, oy, oz, dx, dy, dz, tmin,
                      _mm256_set1_ps(best), skip, far_only, near);
     if (near) {
       if constexpr (!kExact) return kRetry;
@@ -213,7 +216,9 @@ int SphereSet::occluded_pass(const Ray& r, float end) const {
   const __m256 end_id = _mm256_set1_ps(end);
   for (std::size_t k = 0; k < cx_.size(); k += 8) {
     unsigned near = 0;
-    __m256 t = hit_t(&cx_[k], &cy_[k], &cz_[k], &r2_[k], &near2_[k], &idf_[k], ox, oy, oz, dx, dy, dz, tmin,
+    __m256 t = hit_t(_mm256_loadu_ps(&cx_[k]), _mm256_loadu_ps(&cy_[k]), _mm256_loadu_ps(&cz_[k]),
+                     _mm256_loadu_ps(&r2_[k]), _mm256_loadu_ps(&near2_[k]), _mm256_loadu_ps(&idf_[k]),
+                     ox, oy, oz, dx, dy, dz, tmin,
                      tmax, skip, far_only, near);
     // The sphere the segment ends on is not an occluder (see occluded()).
     const __m256 at_end = _mm256_cmp_ps(_mm256_loadu_ps(&idf_[k]), end_id, _CMP_EQ_OQ);
@@ -241,6 +246,74 @@ bool SphereSet::occluded(const Ray& r, std::uint32_t end_sphere) const {
   const int res = occluded_pass<false>(r, end);
   if (res == kRetry) return occluded_exact(r, end);
   return res == kFound;
+}
+
+// Eight rays at once, one per lane, against each sphere in turn: for the
+// report's scenes (six walls, up to four balls) one ray against the spheres'
+// lanes is a chain of dependent steps (sqrt, then a division, then a
+// horizontal minimum) with a third of the lanes idle, where eight rays side
+// by side are eight independent chains. Each lane does hit_t()'s arithmetic
+// on the same numbers as intersect_pass(), so it finds the same roots; a ray
+// that would take intersect_pass()'s second pass (near a sphere, or a tie)
+// is solved by intersect() itself.
+unsigned SphereSet::intersect_batch(const Ray* const* rays, unsigned lanes, const float* tmax,
+                                    float* t_out, std::uint32_t* index) const {
+  assert(batchable());
+  alignas(32) float ox[8] = {}, oy[8] = {}, oz[8] = {}, dx[8] = {}, dy[8] = {}, dz[8] = {};
+  alignas(32) float tmn[8] = {}, tmx[8] = {}, skp[8] = {};
+  alignas(32) std::int32_t fo[8] = {};
+  for (unsigned a = lanes; a; a &= a - 1) {
+    const int l = __builtin_ctz(a);
+    const Ray& r = *rays[l];
+    ox[l] = r.o.x, oy[l] = r.o.y, oz[l] = r.o.z;
+    dx[l] = r.d.x, dy[l] = r.d.y, dz[l] = r.d.z;
+    tmn[l] = r.tmin;
+    tmx[l] = tmax[l];
+    skp[l] = r.skip == kNoSkip ? -2.0f : float(r.skip);
+    fo[l] = r.far_only ? -1 : 0;
+  }
+  const __m256 vox = _mm256_load_ps(ox), voy = _mm256_load_ps(oy), voz = _mm256_load_ps(oz);
+  const __m256 vdx = _mm256_load_ps(dx), vdy = _mm256_load_ps(dy), vdz = _mm256_load_ps(dz);
+  const __m256 vtmin = _mm256_load_ps(tmn), vtmax = _mm256_load_ps(tmx), vskip = _mm256_load_ps(skp);
+  const __m256 vfar = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(fo)));
+  __m256 ts[8];
+  unsigned retry = 0;
+  __m256 m = _mm256_set1_ps(kInf);
+  for (std::size_t k = 0; k < count_; ++k) {
+    unsigned near = 0;
+    ts[k] = hit_t(_mm256_set1_ps(cx_[k]), _mm256_set1_ps(cy_[k]), _mm256_set1_ps(cz_[k]),
+                  _mm256_set1_ps(r2_[k]), _mm256_set1_ps(near2_[k]), _mm256_set1_ps(idf_[k]), vox, voy,
+                  voz, vdx, vdy, vdz, vtmin, vtmax, vskip, vfar, near);
+    retry |= near;
+    m = _mm256_min_ps(m, ts[k]);
+  }
+  // Per lane: the first sphere at the minimum, and how many lie within the
+  // tie bound of intersect_pass() (two or more: decided there, in double).
+  const __m256 bound = _mm256_mul_ps(m, _mm256_set1_ps(1.0f + 0x1p-19f));
+  __m256 first = _mm256_setzero_ps();
+  __m256 ties = _mm256_setzero_ps();
+  for (std::size_t k = count_; k-- > 0;) {
+    first = _mm256_blendv_ps(first, _mm256_set1_ps(float(k)), _mm256_cmp_ps(ts[k], m, _CMP_EQ_OQ));
+    ties = _mm256_add_ps(ties, _mm256_and_ps(_mm256_cmp_ps(ts[k], bound, _CMP_LE_OQ), _mm256_set1_ps(1.0f)));
+  }
+  const unsigned hit = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(m, vtmax, _CMP_LT_OQ))) & lanes;
+  retry |= hit & unsigned(_mm256_movemask_ps(_mm256_cmp_ps(ties, _mm256_set1_ps(1.5f), _CMP_GT_OQ)));
+  retry &= lanes;
+  alignas(32) float tm[8], kf[8];
+  _mm256_store_ps(tm, m);
+  _mm256_store_ps(kf, first);
+  unsigned found = 0;
+  for (unsigned a = lanes; a; a &= a - 1) {
+    const int l = __builtin_ctz(a);
+    if (retry >> l & 1u) {
+      if (intersect(*rays[l], tmax[l], t_out[l], index[l])) found |= 1u << l;
+    } else if (hit >> l & 1u) {
+      t_out[l] = tm[l];
+      index[l] = id_[std::size_t(kf[l])];
+      found |= 1u << l;
+    }
+  }
+  return found;
 }
 
 }  // namespace whisker

@@ -29,6 +29,14 @@ class SphereSet {
   bool occluded(const Ray& ray, std::uint32_t end_sphere = kNoSkip) const;
   std::size_t size() const { return count_; }
 
+  // Whether intersect_batch() serves this set: one to eight spheres.
+  bool batchable() const { return count_ > 0 && count_ <= 8; }
+  // intersect(*rays[l], tmax[l], t[l], index[l]) for each lane l (bit l of
+  // `lanes`, l < 8), the rays side by side; returns the lanes that hit.
+  // The same answers as intersect(), ray by ray.
+  unsigned intersect_batch(const Ray* const* rays, unsigned lanes, const float* tmax, float* t,
+                           std::uint32_t* index) const;
+
  private:
   // One pass of intersect() / occluded(); see sphere_set.cpp.
   template <bool kExact>

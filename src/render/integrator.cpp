@@ -68,6 +68,8 @@ void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, in
     // its shading depend on each other, the paths do not. (Shading each
     // path right after its hit measured 3.5 % slower.)
     Hit hits[kLanes];
+    const Ray* rays[kLanes];
+    unsigned trace = 0;  // the lanes whose hit is not known yet
     for (unsigned a = live; a; a &= a - 1) {
       const int k = __builtin_ctz(a);
       PathState& p = paths[k];
@@ -76,8 +78,16 @@ void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, in
         p.first_hit = nullptr;
         continue;
       }
+      rays[k] = &p.ray;
+      trace |= 1u << k;
+    }
+    if (trace & (trace - 1)) {  // two or more: side by side
+      ctx.stats.rays += std::uint64_t(__builtin_popcount(trace));
+      live &= ~trace | ctx.world.closest_batch(rays, trace, hits);
+    } else if (trace) {
+      const int k = __builtin_ctz(trace);
       ++ctx.stats.rays;
-      if (!ctx.world.closest(p.ray, hits[k])) live &= ~(1u << k);
+      if (!ctx.world.closest(paths[k].ray, hits[k])) live &= ~trace;
     }
     for (unsigned a = live; a; a &= a - 1) {
       const int k = __builtin_ctz(a);

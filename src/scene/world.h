@@ -51,6 +51,23 @@ class World {
     objects_.intersect(ray, hit, mesh_ ? &mesh_->bvh : nullptr);
     return hit.valid();
   }
+  // closest(*rays[l], hits[l]) for each lane l in `lanes` (l < 8), the
+  // rays side by side where the scene allows (ObjectBvh::intersect_batch);
+  // returns the lanes that hit.
+  unsigned closest_batch(const Ray* const* rays, unsigned lanes, Hit* hits) const {
+    for (unsigned a = lanes; a; a &= a - 1) {
+      const int l = __builtin_ctz(a);
+      hits[l] = Hit{};
+      hits[l].t = rays[l]->tmax;
+    }
+    objects_.intersect_batch(rays, lanes, hits, mesh_ ? &mesh_->bvh : nullptr);
+    unsigned found = 0;
+    for (unsigned a = lanes; a; a &= a - 1) {
+      const int l = __builtin_ctz(a);
+      if (hits[l].valid()) found |= 1u << l;
+    }
+    return found;
+  }
   const Material& material(const Hit& hit) const {
     return hit.kind == PrimKind::Sphere ? sphere_material_[hit.prim]
                                         : mesh_material_[mesh_->object[hit.prim]];
