@@ -60,13 +60,8 @@ class World {
       hits[l] = Hit{};
       hits[l].t = rays[l]->tmax;
     }
-    objects_.intersect_batch(rays, lanes, hits, mesh_ ? &mesh_->bvh : nullptr);
-    unsigned found = 0;
-    for (unsigned a = lanes; a; a &= a - 1) {
-      const int l = __builtin_ctz(a);
-      if (hits[l].valid()) found |= 1u << l;
-    }
-    return found;
+    // A hit that was updated is valid: each starts as none.
+    return objects_.intersect_batch(rays, lanes, hits, mesh_ ? &mesh_->bvh : nullptr);
   }
   const Material& material(const Hit& hit) const {
     return hit.kind == PrimKind::Sphere ? sphere_material_[hit.prim]
