@@ -286,6 +286,74 @@ TEST(TracePaths, SideBySideEqualsOneAtATime) {
   }
 }
 
+// Camera rays are made eight at a time (camera_rays(), SIMD lanes):
+// each lane's ray and sampler are bit for bit those of camera_ray() for
+// that sample alone, and the jitter read back from the direction (its
+// pixel position on the image plane, less the pixel centre) is the
+// report's Gaussian, N(0, 0.5^2) per axis and uncorrelated (section 3);
+// none without AA.
+TEST(CameraRays, EightSideBySideAreOneAtATimeAndTheJitterIsGaussian) {
+  for (const SamplerKind kind : {SamplerKind::Independent, SamplerKind::Sobol}) {
+    for (const bool aa : {true, false}) {
+      Scene scene = load_scene(resolve_scene("cat"));
+      scene.settings.aa = aa;
+      scene.settings.sampler = kind;
+      const World world(scene);
+      const CameraFrame cam(scene.camera);
+      PathStats stats;
+      const PathContext ctx{world, scene.settings, stats};
+      std::mt19937 rng(3);
+      std::uniform_int_distribution<int> coord(0, 511);
+      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, worst = 0;
+      int within = 0, count = 0;
+      for (int round = 0; round < 4000; ++round) {
+        const int n = 1 + round % 8;
+        Pixel px[8];
+        Sampler lanes[8], alone[8];
+        for (int l = 0; l < n; ++l) {
+          px[l] = Pixel{coord(rng), coord(rng)};
+          lanes[l] = alone[l] = pixel_sampler(scene.settings, cam, px[l], std::uint64_t(round));
+        }
+        Ray rays[8];
+        camera_rays(ctx, cam, px, lanes, n, rays);
+        for (int l = 0; l < n; ++l) {
+          const Ray one = camera_ray(ctx, cam, px[l], alone[l]);
+          for (int k = 0; k < 3; ++k) {
+            ASSERT_EQ(rays[l].d[k], one.d[k]);
+            ASSERT_EQ(rays[l].o[k], one.o[k]);
+            ASSERT_EQ(rays[l].o_lo[k], one.o_lo[k]);
+          }
+          ASSERT_EQ(lanes[l].get1d(), alone[l].get1d());  // the same numbers drawn
+          const glm::dvec3 d(rays[l].d);
+          const double z = glm::dot(d, glm::dvec3(cam.forward));
+          const double dx = glm::dot(d, glm::dvec3(cam.right)) / z * cam.focal -
+                            (px[l].j - cam.half_w + 0.5);
+          const double dy = (cam.half_h - px[l].i - 0.5) -
+                            glm::dot(d, glm::dvec3(cam.up)) / z * cam.focal;
+          sx += dx, sy += dy, sxx += dx * dx, syy += dy * dy, sxy += dx * dy;
+          within += std::fabs(dx) < 0.5;
+          worst = std::max({worst, std::fabs(dx), std::fabs(dy)});
+          ++count;
+        }
+      }
+      if (!aa) {
+        EXPECT_LT(worst, 1e-3);  // the pixel centre, to float rounding
+        continue;
+      }
+      const double N = count;
+      // Moments of N(0, 1/4): mean 0 (sd 0.5/sqrt N), variance 1/4 (sd of
+      // the estimate sqrt(2/N)/4), covariance 0 (sd 1/(4 sqrt N)),
+      // P(|x| < 1 sd) = 0.6827 (sd sqrt(p(1-p)/N)); 5 sd each.
+      EXPECT_NEAR(sx / N, 0.0, 5 * 0.5 / std::sqrt(N));
+      EXPECT_NEAR(sy / N, 0.0, 5 * 0.5 / std::sqrt(N));
+      EXPECT_NEAR(sxx / N, 0.25, 5 * std::sqrt(2.0 / N) / 4);
+      EXPECT_NEAR(syy / N, 0.25, 5 * std::sqrt(2.0 / N) / 4);
+      EXPECT_NEAR(sxy / N, 0.0, 5 / (4 * std::sqrt(N)));
+      EXPECT_NEAR(within / N, 0.682689, 5 * std::sqrt(0.6827 * 0.3173 / N));
+    }
+  }
+}
+
 // render_tile() for one path per sample traces kLanes (pixel, sample) pairs
 // at a time, a group straddling pixels when the tile's samples are not a
 // multiple of kLanes: the film still gets each pixel's samples added one at

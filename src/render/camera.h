@@ -15,13 +15,15 @@ namespace whisker {
 
 // Anti-aliasing, report section 3: a Gaussian offset of the pixel position,
 // two independent N(0, 0.5^2) pixels from two uniform numbers in [0, 1)
-// by Box-Muller.
-inline glm::vec2 aa_offset(float u1, float u2) {
-  u1 = 1.0f - u1;  // (0, 1]: log stays finite
-  const float r = 0.5f * std::sqrt(-2.0f * std::log(u1));
-  float s, c;
+// by Box-Muller; for one sample or eight side by side (sampling.h).
+template <class F>
+inline void aa_offset(F u1, F u2, F& dx, F& dy) {
+  u1 = 1.0f - u1;  // (0, 1]: the logarithm stays finite
+  const F r = 0.5f * sqrt_lanes(-2.0f * log_positive(u1));
+  F s, c;
   sincos_turn(u2, s, c);
-  return {r * c, r * s};
+  dx = r * c;
+  dy = r * s;
 }
 
 struct CameraFrame {
@@ -52,6 +54,35 @@ struct CameraFrame {
   // The same as a world-space ray (its origin rounded to float).
   Ray ray(int i, int j, float dx, float dy) const {
     return Ray{vec3(origin), direction(i, j, dx, dy), 0.0f, kInf};
+  }
+  // direction() of eight samples side by side: pixel (i[l], j[l]) with the
+  // AA offset from the uniforms u1[l], u2[l] (aa_offset(); none without
+  // `aa`), written to out[l] for l < n. camera_rays() (integrator.h) is
+  // the one caller, for one sample or more: every camera ray is made here.
+  void directions(const int* i, const int* j, const float* u1, const float* u2, bool aa, int n,
+                  vec3* out) const {
+    alignas(32) float fi[8] = {}, fj[8] = {}, a[8] = {}, b[8] = {};
+    for (int l = 0; l < n; ++l) {
+      fi[l] = float(i[l]);
+      fj[l] = float(j[l]);
+      if (aa) {
+        a[l] = u1[l];
+        b[l] = u2[l];
+      }
+    }
+    __m256 dx = _mm256_setzero_ps(), dy = _mm256_setzero_ps();
+    if (aa) aa_offset(_mm256_load_ps(a), _mm256_load_ps(b), dx, dy);
+    const __m256 x = _mm256_load_ps(fj) - half_w + 0.5f + dx;
+    const __m256 y = half_h - _mm256_load_ps(fi) - 0.5f - dy;
+    const __m256 vx = x * right.x + y * up.x + focal * forward.x;
+    const __m256 vy = x * right.y + y * up.y + focal * forward.y;
+    const __m256 vz = x * right.z + y * up.z + focal * forward.z;
+    const __m256 inv = 1.0f / sqrt_lanes(vx * vx + vy * vy + vz * vz);
+    alignas(32) float ox[8], oy[8], oz[8];
+    _mm256_store_ps(ox, vx * inv);
+    _mm256_store_ps(oy, vy * inv);
+    _mm256_store_ps(oz, vz * inv);
+    for (int l = 0; l < n; ++l) out[l] = vec3(ox[l], oy[l], oz[l]);
   }
 };
 

@@ -143,8 +143,10 @@ TileResult render_tile_in_lanes(const PathContext& ctx, const CameraFrame& cam,
       px[l] = Pixel{t.i0 + int(p / cols), t.j0 + int(p % cols)};
       sample[l] = tile.first_sample + std::uint64_t(q % tile.spp);
       sampler[l] = pixel_sampler(ctx.settings, cam, px[l], sample[l]);
-      path[l] = PathState{camera_ray(ctx, cam, px[l], sampler[l])};
     }
+    Ray ray[kLanes];
+    camera_rays(ctx, cam, px, sampler, n, ray);
+    for (int l = 0; l < n; ++l) path[l] = PathState{ray[l]};
     trace_paths(ctx, path, sampler, n);
     for (int l = 0; l < n; ++l) {
       const std::uint32_t index = pixel_index(cam, px[l].i, px[l].j);

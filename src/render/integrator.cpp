@@ -153,14 +153,31 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
   return next;
 }
 
-Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
-  glm::vec2 d(0.0f);
-  if (ctx.settings.aa) {
-    float u1, u2;
-    sampler.get2d(u1, u2);
-    d = aa_offset(u1, u2);
+void camera_rays(const PathContext& ctx, const CameraFrame& cam, const Pixel* px,
+                 Sampler* samplers, int n, Ray* out) {
+  assert(n <= 8);
+  int i[8], j[8];
+  float u1[8] = {}, u2[8] = {};
+  const bool aa = ctx.settings.aa;
+  for (int l = 0; l < n; ++l) {
+    i[l] = px[l].i;
+    j[l] = px[l].j;
+    if (aa) samplers[l].get2d(u1[l], u2[l]);
   }
-  return ctx.world.to_render(cam.origin, cam.direction(px.i, px.j, d.x, d.y));
+  vec3 d[8];
+  cam.directions(i, j, u1, u2, aa, n, d);
+  // Every camera ray starts at the camera: one origin, split once.
+  const Ray origin = ctx.world.to_render(cam.origin, vec3(0.0f, 0.0f, -1.0f));
+  for (int l = 0; l < n; ++l) {
+    out[l] = origin;
+    out[l].d = d[l];
+  }
+}
+
+Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
+  Ray ray;
+  camera_rays(ctx, cam, &px, &sampler, 1, &ray);
+  return ray;
 }
 
 vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
