@@ -315,7 +315,7 @@ TEST(CameraRays, EightSideBySideAreOneAtATimeAndTheJitterIsGaussian) {
           lanes[l] = alone[l] = pixel_sampler(scene.settings, cam, px[l], std::uint64_t(round));
         }
         Ray rays[8];
-        camera_rays(ctx, cam, px, lanes, n, rays);
+        camera_rays(ctx, cam, {px, std::size_t(n)}, lanes, rays);
         for (int l = 0; l < n; ++l) {
           const Ray one = camera_ray(ctx, cam, px[l], alone[l]);
           for (int k = 0; k < 3; ++k) {

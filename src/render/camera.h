@@ -55,25 +55,20 @@ struct CameraFrame {
   Ray ray(int i, int j, float dx, float dy) const {
     return Ray{vec3(origin), direction(i, j, dx, dy), 0.0f, kInf};
   }
-  // direction() of eight samples side by side: pixel (i[l], j[l]) with the
-  // AA offset from the uniforms u1[l], u2[l] (aa_offset(); none without
-  // `aa`), written to out[l] for l < n. camera_rays() (integrator.h) is
-  // the one caller, for one sample or more: every camera ray is made here.
-  void directions(const int* i, const int* j, const float* u1, const float* u2, bool aa, int n,
-                  vec3* out) const {
-    alignas(32) float fi[8] = {}, fj[8] = {}, a[8] = {}, b[8] = {};
-    for (int l = 0; l < n; ++l) {
-      fi[l] = float(i[l]);
-      fj[l] = float(j[l]);
-      if (aa) {
-        a[l] = u1[l];
-        b[l] = u2[l];
-      }
-    }
+  // Up to eight samples side by side: pixel (i[l], j[l]) and the two
+  // uniforms of its AA offset (aa_offset()), for l < n.
+  struct Lanes {
+    int n = 0;
+    alignas(32) float i[8] = {}, j[8] = {}, u1[8] = {}, u2[8] = {};
+  };
+  // direction() of each of them, written to out[l] (none offset without
+  // `aa`). camera_rays() (integrator.h) is the one caller, for one sample
+  // or more: every camera ray is made here.
+  void directions(const Lanes& s, bool aa, vec3* out) const {
     __m256 dx = _mm256_setzero_ps(), dy = _mm256_setzero_ps();
-    if (aa) aa_offset(_mm256_load_ps(a), _mm256_load_ps(b), dx, dy);
-    const __m256 x = _mm256_load_ps(fj) - half_w + 0.5f + dx;
-    const __m256 y = half_h - _mm256_load_ps(fi) - 0.5f - dy;
+    if (aa) aa_offset(_mm256_load_ps(s.u1), _mm256_load_ps(s.u2), dx, dy);
+    const __m256 x = _mm256_load_ps(s.j) - half_w + 0.5f + dx;
+    const __m256 y = half_h - _mm256_load_ps(s.i) - 0.5f - dy;
     const __m256 vx = x * right.x + y * up.x + focal * forward.x;
     const __m256 vy = x * right.y + y * up.y + focal * forward.y;
     const __m256 vz = x * right.z + y * up.z + focal * forward.z;
@@ -82,7 +77,7 @@ struct CameraFrame {
     _mm256_store_ps(ox, vx * inv);
     _mm256_store_ps(oy, vy * inv);
     _mm256_store_ps(oz, vz * inv);
-    for (int l = 0; l < n; ++l) out[l] = vec3(ox[l], oy[l], oz[l]);
+    for (int l = 0; l < s.n; ++l) out[l] = vec3(ox[l], oy[l], oz[l]);
   }
 };
 

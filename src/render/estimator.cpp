@@ -145,7 +145,7 @@ TileResult render_tile_in_lanes(const PathContext& ctx, const CameraFrame& cam,
       sampler[l] = pixel_sampler(ctx.settings, cam, px[l], sample[l]);
     }
     Ray ray[kLanes];
-    camera_rays(ctx, cam, px, sampler, n, ray);
+    camera_rays(ctx, cam, {px, std::size_t(n)}, sampler, ray);
     for (int l = 0; l < n; ++l) path[l] = PathState{ray[l]};
     trace_paths(ctx, path, sampler, n);
     for (int l = 0; l < n; ++l) {

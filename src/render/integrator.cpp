@@ -153,22 +153,22 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
   return next;
 }
 
-void camera_rays(const PathContext& ctx, const CameraFrame& cam, const Pixel* px,
-                 Sampler* samplers, int n, Ray* out) {
-  assert(n <= 8);
-  int i[8], j[8];
-  float u1[8] = {}, u2[8] = {};
+void camera_rays(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
+                 Sampler* samplers, Ray* out) {
+  assert(px.size() <= 8);
+  CameraFrame::Lanes lanes;
+  lanes.n = int(px.size());
   const bool aa = ctx.settings.aa;
-  for (int l = 0; l < n; ++l) {
-    i[l] = px[l].i;
-    j[l] = px[l].j;
-    if (aa) samplers[l].get2d(u1[l], u2[l]);
+  for (int l = 0; l < lanes.n; ++l) {
+    lanes.i[l] = float(px[std::size_t(l)].i);
+    lanes.j[l] = float(px[std::size_t(l)].j);
+    if (aa) samplers[l].get2d(lanes.u1[l], lanes.u2[l]);
   }
   vec3 d[8];
-  cam.directions(i, j, u1, u2, aa, n, d);
+  cam.directions(lanes, aa, d);
   // Every camera ray starts at the camera: one origin, split once.
   const Ray origin = ctx.world.to_render(cam.origin, vec3(0.0f, 0.0f, -1.0f));
-  for (int l = 0; l < n; ++l) {
+  for (int l = 0; l < lanes.n; ++l) {
     out[l] = origin;
     out[l].d = d[l];
   }
@@ -176,7 +176,7 @@ void camera_rays(const PathContext& ctx, const CameraFrame& cam, const Pixel* px
 
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
   Ray ray;
-  camera_rays(ctx, cam, &px, &sampler, 1, &ray);
+  camera_rays(ctx, cam, {&px, 1}, &sampler, &ray);
   return ray;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 
 #include <xmmintrin.h>
 
@@ -81,11 +82,11 @@ vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Samp
 
 // Pixel px's camera ray in render space, jittered when AA is on.
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
-// The same for n <= 8 samples side by side (out[l] for px[l], samplers[l]):
+// The same for up to 8 samples side by side (out[l] for px[l], samplers[l]):
 // each sampler draws the same numbers, and each ray is the same bit for
-// bit, as camera_ray() (which is this with n = 1) makes alone.
-void camera_rays(const PathContext& ctx, const CameraFrame& cam, const Pixel* px,
-                 Sampler* samplers, int n, Ray* out);
+// bit, as camera_ray() (which is this for one sample) makes alone.
+void camera_rays(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
+                 Sampler* samplers, Ray* out);
 
 // The light a path gathers from `state` on; the state is advanced in place
 // (taken by reference: copying it whole into the call cost a store-forward
