@@ -286,7 +286,7 @@ TEST(TracePaths, SideBySideEqualsOneAtATime) {
   }
 }
 
-// Camera rays are made eight at a time (camera_rays(), SIMD lanes):
+// Camera rays are made eight at a time (camera_paths(), SIMD lanes):
 // each lane's ray and sampler are bit for bit those of camera_ray() for
 // that sample alone, and the jitter read back from the direction (its
 // pixel position on the image plane, less the pixel centre) is the
@@ -314,17 +314,17 @@ TEST(CameraRays, EightSideBySideAreOneAtATimeAndTheJitterIsGaussian) {
           px[l] = Pixel{coord(rng), coord(rng)};
           lanes[l] = alone[l] = pixel_sampler(scene.settings, cam, px[l], std::uint64_t(round));
         }
-        Ray rays[8];
-        camera_rays(ctx, cam, {px, std::size_t(n)}, lanes, rays);
+        PathState paths[8];
+        camera_paths(ctx, cam, {px, std::size_t(n)}, lanes, paths);
         for (int l = 0; l < n; ++l) {
           const Ray one = camera_ray(ctx, cam, px[l], alone[l]);
           for (int k = 0; k < 3; ++k) {
-            ASSERT_EQ(rays[l].d[k], one.d[k]);
-            ASSERT_EQ(rays[l].o[k], one.o[k]);
-            ASSERT_EQ(rays[l].o_lo[k], one.o_lo[k]);
+            ASSERT_EQ(paths[l].ray.d[k], one.d[k]);
+            ASSERT_EQ(paths[l].ray.o[k], one.o[k]);
+            ASSERT_EQ(paths[l].ray.o_lo[k], one.o_lo[k]);
           }
           ASSERT_EQ(lanes[l].get1d(), alone[l].get1d());  // the same numbers drawn
-          const glm::dvec3 d(rays[l].d);
+          const glm::dvec3 d(paths[l].ray.d);
           const double z = glm::dot(d, glm::dvec3(cam.forward));
           const double dx = glm::dot(d, glm::dvec3(cam.right)) / z * cam.focal -
                             (px[l].j - cam.half_w + 0.5);

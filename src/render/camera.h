@@ -62,7 +62,7 @@ struct CameraFrame {
     alignas(32) float i[8] = {}, j[8] = {}, u1[8] = {}, u2[8] = {};
   };
   // direction() of each of them, written to out[l] (none offset without
-  // `aa`). camera_rays() (integrator.h) is the one caller, for one sample
+  // `aa`). camera_paths() (integrator.h) is the one caller, for one sample
   // or more: every camera ray is made here.
   void directions(const Lanes& s, bool aa, vec3* out) const {
     __m256 dx = _mm256_setzero_ps(), dy = _mm256_setzero_ps();

@@ -1,6 +1,7 @@
 #include "render/estimator.h"
 
 #include <algorithm>
+#include <new>
 #include <vector>
 
 namespace whisker {
@@ -142,11 +143,11 @@ TileResult render_tile_in_lanes(const PathContext& ctx, const CameraFrame& cam,
       const std::int64_t q = q0 + l, p = q / tile.spp;
       px[l] = Pixel{t.i0 + int(p / cols), t.j0 + int(p % cols)};
       sample[l] = tile.first_sample + std::uint64_t(q % tile.spp);
-      sampler[l] = pixel_sampler(ctx.settings, cam, px[l], sample[l]);
+      // Made in place: a copy of a sampler just built (its fields stored
+      // one by one, read back by one wide load) waited on the stores.
+      ::new (&sampler[l]) Sampler(pixel_sampler(ctx.settings, cam, px[l], sample[l]));
     }
-    Ray ray[kLanes];
-    camera_rays(ctx, cam, {px, std::size_t(n)}, sampler, ray);
-    for (int l = 0; l < n; ++l) path[l] = PathState{ray[l]};
+    camera_paths(ctx, cam, {px, std::size_t(n)}, sampler, path);
     trace_paths(ctx, path, sampler, n);
     for (int l = 0; l < n; ++l) {
       const std::uint32_t index = pixel_index(cam, px[l].i, px[l].j);

@@ -153,8 +153,8 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
   return next;
 }
 
-void camera_rays(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
-                 Sampler* samplers, Ray* out) {
+void camera_paths(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
+                  Sampler* samplers, PathState* out) {
   assert(px.size() <= 8);
   CameraFrame::Lanes lanes;
   lanes.n = int(px.size());
@@ -169,15 +169,15 @@ void camera_rays(const PathContext& ctx, const CameraFrame& cam, std::span<const
   // Every camera ray starts at the camera: one origin, split once.
   const Ray origin = ctx.world.to_render(cam.origin, vec3(0.0f, 0.0f, -1.0f));
   for (int l = 0; l < lanes.n; ++l) {
-    out[l] = origin;
-    out[l].d = d[l];
+    out[l] = PathState{origin};
+    out[l].ray.d = d[l];
   }
 }
 
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {
-  Ray ray;
-  camera_rays(ctx, cam, {&px, 1}, &sampler, &ray);
-  return ray;
+  PathState path;
+  camera_paths(ctx, cam, {&px, 1}, &sampler, &path);
+  return path.ray;
 }
 
 vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler) {

@@ -82,11 +82,13 @@ vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Samp
 
 // Pixel px's camera ray in render space, jittered when AA is on.
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
-// The same for up to 8 samples side by side (out[l] for px[l], samplers[l]):
-// each sampler draws the same numbers, and each ray is the same bit for
-// bit, as camera_ray() (which is this for one sample) makes alone.
-void camera_rays(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
-                 Sampler* samplers, Ray* out);
+// The paths of up to 8 samples side by side, at the camera (out[l] for
+// px[l], samplers[l]): each sampler draws the same numbers, and each ray is
+// the same bit for bit, as camera_ray() (which is this for one sample)
+// makes alone. Written into the path states themselves: a ray copied in
+// right after it was made waited on the stores that made it.
+void camera_paths(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,
+                  Sampler* samplers, PathState* out);
 
 // The light a path gathers from `state` on; the state is advanced in place
 // (taken by reference: copying it whole into the call cost a store-forward
