@@ -354,6 +354,19 @@ bool WideBvh::occluded(const Ray& ray) const {
   return false;
 }
 
+bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t count) {
+  if (count == 0 || !traceable(ray)) return false;
+  RayAvx r(ray);
+  r.prepare_triangles(ray);
+  const __m256 tmin = _mm256_set1_ps(ray.tmin);
+  const __m256 tmax = _mm256_set1_ps(ray.tmax);
+  for (std::size_t p = 0; p < count; ++p) {
+    __m256 t, e1, e2, inv;
+    if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;
+  }
+  return false;
+}
+
 #else  // portable fallback: the same traversal one child / triangle at a time
 
 namespace {
@@ -439,6 +452,17 @@ bool WideBvh::occluded(const Ray& ray) const {
   Hit h;
   h.t = ray.tmax;
   return intersect(ray, h);
+}
+
+bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t count) {
+  if (count == 0 || !traceable(ray)) return false;
+  const RayScalar r(ray);
+  for (std::size_t p = 0; p < count; ++p)
+    for (int i = 0; i < kWidth; ++i) {
+      float t, u, v;
+      if (intersect_triangle(r.w, packet_tri(packets[p], i), ray.tmin, ray.tmax, t, u, v)) return true;
+    }
+  return false;
 }
 
 #endif

@@ -2,6 +2,7 @@
 // AVX2 (one node tests 8 boxes at once, one packet tests 8 triangles at once).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -44,6 +45,11 @@ struct WideBvh {
   bool intersect(const Ray& ray, Hit& hit) const;
   bool occluded(const Ray& ray) const;
 };
+
+// Whether any triangle of `count` packets meets `ray` in (tmin, tmax): the
+// leaves' own test (WideBvh::occluded), for packets kept elsewhere (the
+// light buffer, light_buffer.h).
+bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t count);
 
 struct BinaryBvh;
 // Collapses a binary tree into the 8-wide one: each wide node takes its

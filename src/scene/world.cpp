@@ -52,6 +52,24 @@ World::World(const Scene& scene, const World* reuse) {
     build_mesh(scene, method);
   }
   objects_ = ObjectBvh(spheres_, mesh_->bounds);
+  build_light_buffer(method);
+}
+
+void World::build_light_buffer(BvhMethod method) {
+  if (method != BvhMethod::Sah || !(light_clear2_ > 0.0f) || mesh_->tris.empty()) return;
+  // Shadow rays from farther than the mesh's farthest corner, four times
+  // over, go to the tree: the cells' margins grow with the rays' length.
+  const Box3& b = mesh_->bounds;
+  double corner = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c(k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y, k & 4 ? b.hi.z : b.lo.z);
+    corner = std::max(corner, glm::length(c - glm::dvec3(light_.position)));
+  }
+  const float reach = float(std::min(std::sqrt(double(light_clear2_)), 4.0 * corner));
+  // About two cells a side per square root of the triangles: a few
+  // triangles a cell where the mesh is.
+  const int cells = std::clamp(int(2.0 * std::sqrt(double(mesh_->tris.size()))), 8, 128);
+  light_buffer_ = LightBuffer(light_.position, mesh_->tris, reach, cells);
 }
 
 void World::build_mesh(const Scene& scene, BvhMethod method) {

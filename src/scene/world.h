@@ -12,6 +12,7 @@
 
 #include "geometry/bvh.h"
 #include "geometry/bvh_method.h"
+#include "geometry/light_buffer.h"
 #include "geometry/ray.h"
 #include "geometry/sphere.h"
 #include "geometry/surface_point.h"
@@ -101,7 +102,10 @@ class World {
   // light_clear2_) only the triangles are tested. Same answer as occluded().
   bool occluded_to_light(const Ray& ray, float dist2) const {
     if (!light_cages_.empty() && outside_a_light_cage(ray)) return true;
-    if (dist2 < light_clear2_) return mesh_ && mesh_->bvh.occluded(ray);
+    if (dist2 < light_clear2_) {
+      if (!mesh_) return false;
+      return light_buffer_.covers(ray) ? light_buffer_.occluded(ray) : mesh_->bvh.occluded(ray);
+    }
     return occluded(ray, light_on_.empty() ? kNoSkip : light_sphere_passed(ray));
   }
 
@@ -130,6 +134,7 @@ class World {
   bool outside_a_light_cage(const Ray& ray) const;
   std::uint32_t light_sphere_passed(const Ray& ray) const;
   void build_mesh(const Scene& scene, BvhMethod method);
+  void build_light_buffer(BvhMethod method);
   void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   void record_triangle(const Hit& hit, SurfaceHit& out) const;
 
@@ -154,6 +159,10 @@ class World {
   // (light_sphere_passed()).
   std::vector<std::uint32_t> light_on_;
   Light light_;  // the scene light in render space (light_clear2_ is computed for it)
+  // The triangles by direction from the light, for the shadow rays that test
+  // only triangles (within light_clear2_); built with the SAH tree only
+  // (--accel brute, bbox and midpoint time those structures as they are).
+  LightBuffer light_buffer_;
   glm::dvec3 origin_{0.0};
 };
 
