@@ -146,3 +146,40 @@ TEST(LightBuffer, GivesUpWhereTheListsWouldOutgrowTheMesh) {
   Ray ray{vec3(10.0f, 0.0f, 0.0f), vec3(-1.0f, 0.0f, 0.0f), 0.0f, 9.9f};
   EXPECT_FALSE(buffer.covers(ray));
 }
+
+// The cells' margins: shadow rays aimed at the light from up to 150 away
+// along directions within a few float ULPs of a boundary between cells
+// (a = y / x = 1/4 on face +x, between cells 4 and 5 of 8), past a
+// triangle whose edge lies on that boundary (y = 2.5 at x = 10). Whether a
+// ray meets the triangle, and in which cell its own direction falls, are
+// both decided by rounding; some meet it from cell 4, beside the triangle's
+// own cells, and the margin puts the triangle there too. (With no margin,
+// this fails.)
+TEST(LightBuffer, RaysThroughACellBoundaryFindTheirTriangle) {
+  const std::vector<Triangle> tris = {
+      {vec3(10.0f, 2.5f, -1.0f), vec3(10.0f, 2.5f, 1.0f), vec3(10.0f, 4.5f, 0.0f)}};
+  const vec3 light(0.0f);
+  const Bvh tree = Bvh::build(tris, BvhMethod::Sah);
+  const LightBuffer buffer(light, tris, 200.0f, 8);
+  std::mt19937 g(5);
+  std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+  std::uniform_int_distribution<int> ulps(-4, 4);
+  int hits = 0, other_cell = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const float x = 20.0f + 130.0f * uni(g);
+    float y = 0.25f * x;  // exact: on the boundary
+    for (int n = ulps(g); n != 0; n += n < 0 ? 1 : -1)
+      y = std::nextafter(y, n < 0 ? -kInf : kInf);
+    const vec3 o(x, y, x * 0.1f * (uni(g) - 0.5f));
+    const vec3 to = light - o;
+    const float dist = std::sqrt(glm::dot(to, to));
+    const Ray ray{o, to * (1.0f / dist), 0.0f, dist * (1.0f - 1e-5f)};
+    ASSERT_TRUE(buffer.covers(ray));
+    const bool tree_says = tree.occluded(ray);
+    hits += tree_says;
+    other_cell += tree_says && buffer.cell_of(-ray.d) / 8 % 8 == 4;  // a < 1/4
+    ASSERT_EQ(buffer.occluded(ray), tree_says) << k;
+  }
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(other_cell, 100);  // the case the margin is for occurs
+}

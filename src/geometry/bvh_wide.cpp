@@ -1,41 +1,22 @@
-// The 8-wide BVH: single-ray traversal (AVX2, with a scalar fallback). The
+// The 8-wide BVH: single-ray traversal in AVX2 (bvh_wide_portable.cpp has
+// the scalar fallback, built where the compiler does not target AVX2). The
 // collapse that builds it is in bvh_collapse.cpp.
 #include "geometry/bvh_wide.h"
+
+#if defined(__AVX2__) && defined(__FMA__)
+
+#include <immintrin.h>
 
 #include <cmath>
 #include <cstring>
 
-#if defined(__AVX2__) && defined(__FMA__)
-#include <immintrin.h>
-#define WHISKER_BVH_AVX2 1
-#endif
+#include "geometry/bvh_wide_parts.h"
 
 namespace whisker {
 
+using namespace wide_parts;
+
 namespace {
-
-// Robust slab test (Ize, "Robust BVH Ray Traversal", JCGT 2013): the far
-// distance grows by 1 + 2 gamma(3), gamma(n) = n u / (1 - n u), to cover the
-// three roundings of (b - o) * (1 / d), so a ray through a shared edge is
-// never culled by both boxes.
-constexpr float kFarScale = 1.0f + 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
-
-// 1/d with zero components replaced by a tiny signed value: (b - o) * (1/d)
-// stays finite (no 0 * inf), and the sign picks the near plane.
-inline float safe_inv(float d) {
-  const float tiny = 1e-30f;
-  if (std::fabs(d) < tiny) d = std::copysign(tiny, d);
-  return 1.0f / d;
-}
-
-constexpr int kStackSize = 512;  // 7 entries per level, depth <= 72 (bvh_build.cpp)
-
-struct StackEntry {
-  std::uint32_t ref;
-  float t;
-};
-
-#ifdef WHISKER_BVH_AVX2
 
 struct RayAvx {
   __m256 ix, iy, iz;                 // 1 / d
@@ -171,6 +152,15 @@ inline unsigned tri_test(const RayAvx& r, const TriPacket& p, __m256 tmin, __m25
   return static_cast<unsigned>(_mm256_movemask_ps(ok)) & ~mixed;
 }
 
+// Whether any triangle of `count` packets is hit within (tmin, tmax).
+inline bool any_hit(const RayAvx& r, const TriPacket* p, std::size_t count, __m256 tmin,
+                    __m256 tmax) {
+  __m256 t, e1, e2, inv;
+  for (std::size_t k = 0; k < count; ++k)
+    if (tri_test(r, p[k], tmin, tmax, t, e1, e2, inv)) return true;
+  return false;
+}
+
 inline float lane(__m256 v, unsigned i) {
   alignas(32) float a[kWidth];
   _mm256_store_ps(a, v);
@@ -264,15 +254,7 @@ inline void descend(const WideNode& n, unsigned mask, __m256 tnear, StackEntry* 
   ref = top[k - 1].ref;
 }
 
-#endif  // WHISKER_BVH_AVX2
-
-inline bool is_leaf(std::uint32_t ref) { return (ref & kLeafBit) != 0; }
-inline std::uint32_t leaf_first(std::uint32_t ref) { return ref & 0xffffffu; }
-inline std::uint32_t leaf_packets(std::uint32_t ref) { return ((ref >> 24) & 0x7fu) + 1; }
-
 }  // namespace
-
-#ifdef WHISKER_BVH_AVX2
 
 bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
   if (packets.empty() || !traceable(ray)) return false;
@@ -322,11 +304,7 @@ bool WideBvh::occluded(const Ray& ray) const {
   const __m256 tmax = _mm256_set1_ps(ray.tmax);
   if (nodes.empty()) {  // brute force: every packet
     r.prepare_triangles(ray);
-    for (const TriPacket& p : packets) {
-      __m256 t, e1, e2, inv;
-      if (tri_test(r, p, tmin, tmax, t, e1, e2, inv)) return true;
-    }
-    return false;
+    return any_hit(r, packets.data(), packets.size(), tmin, tmax);
   }
   __m256 tnear;
   const unsigned root = box_test(r, nodes[0], tmin, tmax, tnear);
@@ -344,11 +322,7 @@ bool WideBvh::occluded(const Ray& ray) const {
       for (unsigned mask = box_test(r, n, tmin, tmax, tnear); mask; mask &= mask - 1)
         stack[sp++] = n.child[__builtin_ctz(mask)];
     } else {
-      const std::uint32_t first = leaf_first(ref), count = leaf_packets(ref);
-      for (std::uint32_t p = first; p < first + count; ++p) {
-        __m256 t, e1, e2, inv;
-        if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;
-      }
+      if (any_hit(r, &packets[leaf_first(ref)], leaf_packets(ref), tmin, tmax)) return true;
     }
   }
   return false;
@@ -358,113 +332,9 @@ bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t c
   if (count == 0 || !traceable(ray)) return false;
   RayAvx r(ray);
   r.prepare_triangles(ray);
-  const __m256 tmin = _mm256_set1_ps(ray.tmin);
-  const __m256 tmax = _mm256_set1_ps(ray.tmax);
-  for (std::size_t p = 0; p < count; ++p) {
-    __m256 t, e1, e2, inv;
-    if (tri_test(r, packets[p], tmin, tmax, t, e1, e2, inv)) return true;
-  }
-  return false;
+  return any_hit(r, packets, count, _mm256_set1_ps(ray.tmin), _mm256_set1_ps(ray.tmax));
 }
-
-#else  // portable fallback: the same traversal one child / triangle at a time
-
-namespace {
-
-struct RayScalar {
-  WatertightRay w;
-  vec3 o, inv;
-  explicit RayScalar(const Ray& r)
-      : w(r), o(r.o), inv(safe_inv(r.d.x), safe_inv(r.d.y), safe_inv(r.d.z)) {}
-};
-
-inline bool child_test(const RayScalar& r, const WideNode& n, int i, float tmin, float tmax,
-                       float& tnear) {
-  float tn = tmin, tf = kInf;
-  for (int a = 0; a < 3; ++a) {
-    const float lo = n.lo[a][i], hi = n.hi[a][i];
-    const float near = r.inv[a] >= 0.0f ? lo : hi, far = r.inv[a] >= 0.0f ? hi : lo;
-    tn = std::max(tn, (near - r.o[a]) * r.inv[a]);
-    tf = std::min(tf, (far - r.o[a]) * r.inv[a]);
-  }
-  tnear = tn;
-  return tn <= std::min(tf * kFarScale, tmax);
-}
-
-inline Triangle packet_tri(const TriPacket& p, int i) {
-  return Triangle{vec3(p.v[0][0][i], p.v[0][1][i], p.v[0][2][i]),
-                  vec3(p.v[1][0][i], p.v[1][1][i], p.v[1][2][i]),
-                  vec3(p.v[2][0][i], p.v[2][1][i], p.v[2][2][i])};
-}
-
-}  // namespace
-
-bool WideBvh::intersect(const Ray& ray, Hit& hit) const {
-  if (packets.empty() || !traceable(ray)) return false;
-  const RayScalar r(ray);
-  float best = std::min(ray.tmax, hit.t);
-  bool found = false;
-  StackEntry stack[kStackSize];
-  int sp = 0;
-  // Brute force (no nodes): one leaf of every packet.
-  stack[sp++] = {nodes.empty() ? kLeafBit : 0u, ray.tmin};
-  while (sp > 0) {
-    const StackEntry e = stack[--sp];
-    if (e.t > best) continue;
-    if (!is_leaf(e.ref)) {
-      const WideNode& n = nodes[e.ref];
-      StackEntry s[kWidth];
-      int k = 0;
-      for (int i = 0; i < kWidth; ++i) {
-        float tn;
-        if (n.child[i] != kEmptyRef && child_test(r, n, i, ray.tmin, best, tn)) {
-          int j = k++;
-          while (j > 0 && s[j - 1].t < tn) {
-            s[j] = s[j - 1];
-            --j;
-          }
-          s[j] = {n.child[i], tn};
-        }
-      }
-      for (int j = 0; j < k; ++j) stack[sp++] = s[j];
-    } else {
-      const std::size_t first = leaf_first(e.ref);
-      const std::size_t count = nodes.empty() ? packets.size() : leaf_packets(e.ref);
-      for (std::size_t p = first; p < first + count; ++p)
-        for (int i = 0; i < kWidth; ++i) {
-          float t, u, v;
-          if (intersect_triangle(r.w, packet_tri(packets[p], i), ray.tmin, best, t, u, v)) {
-            best = t;
-            hit.t = t;
-            hit.kind = PrimKind::Triangle;
-            hit.prim = packets[p].prim[i];
-            hit.u = u;
-            hit.v = v;
-            found = true;
-          }
-        }
-    }
-  }
-  return found;
-}
-
-bool WideBvh::occluded(const Ray& ray) const {
-  Hit h;
-  h.t = ray.tmax;
-  return intersect(ray, h);
-}
-
-bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t count) {
-  if (count == 0 || !traceable(ray)) return false;
-  const RayScalar r(ray);
-  for (std::size_t p = 0; p < count; ++p)
-    for (int i = 0; i < kWidth; ++i) {
-      float t, u, v;
-      if (intersect_triangle(r.w, packet_tri(packets[p], i), ray.tmin, ray.tmax, t, u, v)) return true;
-    }
-  return false;
-}
-
-#endif
 
 }  // namespace whisker
+
+#endif
