@@ -123,19 +123,23 @@ LightBuffer::LightBuffer(const vec3& light, const std::vector<Triangle>& tris, f
       rects.push_back(r);
     }
   }
-  // Each cell's triangles, then its packets of eight.
+  // Each cell's triangles, then its packets of eight. Counted from the
+  // rectangles first: past 16 entries a triangle, or 64 MB of packets, the
+  // buffer is given up before a cell is filled (a mesh hugging the light
+  // would otherwise fill every cell of every face with every triangle).
   const std::size_t count = std::size_t(6) * std::size_t(cells) * std::size_t(cells);
+  std::size_t entries = 0;
+  for (const CellRect& r : rects) entries += std::size_t(r.a1 - r.a0 + 1) * std::size_t(r.b1 - r.b0 + 1);
+  const std::size_t packets_at_most = entries / kWidth + std::min(entries, count);
+  if (entries > 16 * tris.size() || packets_at_most > (std::size_t(64) << 20) / sizeof(TriPacket)) {
+    reach_ = -1.0f;
+    return;
+  }
   std::vector<std::uint32_t> n(count + 1, 0);
   for (const CellRect& r : rects)
     for (int a = r.a0; a <= r.a1; ++a)
       for (int b = r.b0; b <= r.b1; ++b) ++n[std::size_t((r.face * cells + a) * cells + b)];
   std::vector<std::uint32_t> start(count + 1, 0);
-  std::size_t entries = 0;
-  for (std::size_t c = 0; c < count; ++c) entries += n[c];
-  if (entries > 16 * tris.size()) {
-    reach_ = -1.0f;
-    return;
-  }
   for (std::size_t c = 0; c < count; ++c) start[c + 1] = start[c] + n[c];
   std::vector<std::uint32_t> ids(start[count]);
   std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);

@@ -22,10 +22,11 @@ class LightBuffer {
   LightBuffer() = default;
   // For the point light at `light`, over `tris`, for shadow rays of length at
   // most `reach` (their rounding, which the cells' margins cover, grows with
-  // it). `cells`: the cube's faces are cells x cells. Triangles that cross
-  // a plane through the light go to every cell of a face; where that makes
-  // the lists more than 16 times the triangles, none is kept (covers()
-  // then answers false for every ray, and the tree answers).
+  // it). `cells`: the cube's faces are cells x cells. Triangles that pass
+  // through the light, or lie so near it that the margins reach half a
+  // face, go to every cell of a face; where the lists would hold more than
+  // 16 entries a triangle, or the packets take more than 64 MB, none is
+  // kept (covers() then answers false for every ray, and the tree answers).
   LightBuffer(const vec3& light, const std::vector<Triangle>& tris, float reach, int cells);
 
   // Whether occluded() answers for `ray`, a shadow ray aimed at the light.
