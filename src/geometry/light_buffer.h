@@ -46,7 +46,6 @@ class LightBuffer {
   std::uint32_t cell_of(const vec3& u) const;
   bool empty() const { return first_.empty(); }
   std::size_t packet_count() const { return packets_.size(); }
-  int cells() const { return cells_; }
 
  private:
   int cells_ = 0;
