@@ -146,7 +146,7 @@ TEST(World, ShadowRaysToTheLightGiveTheSameAnswerWithoutTheWalls) {
     const float d2 = glm::dot(to, to);
     ASSERT_LT(d2, world.light_clearance2()) << k;  // the fast path is the one taken
     const bool full = world.occluded(shadow);
-    ASSERT_EQ(world.occluded_to_light(shadow, d2), full) << k;
+    ASSERT_EQ(world.occluded_to_light(shadow, d2, -to), full) << k;
     blocked += full;
     ++tested;
   }
@@ -181,7 +181,7 @@ TEST(World, ShadowRaysFromInsideAGlassBallStillSeeTheGlass) {
   const Ray shadow = spawn_shadow_ray(h, light);
   const float d2 = glm::dot(light - p, light - p);
   ASSERT_TRUE(world.occluded(shadow));  // the glass shell is in the way
-  EXPECT_TRUE(world.occluded_to_light(shadow, d2));
+  EXPECT_TRUE(world.occluded_to_light(shadow, d2, p - light));
   // The glass ball's nearest point is |L - c| - r = 45.8 - 10 from the light.
   EXPECT_LT(world.light_clearance2(), 36.0f * 36.0f);
 }

@@ -9,7 +9,8 @@ namespace whisker {
 
 namespace {
 
-// How far a shadow ray's direction may be from the exact direction from its
+// How far a shadow ray's direction, or the direction its cell is looked up
+// along (occluded()'s from_light), may be from the exact direction from its
 // origin to the light, in radians: the difference, the square root and the
 // division that make it round by a few float ULPs each (offset.h); 64 of
 // them is several times that.

@@ -33,9 +33,13 @@ class LightBuffer {
   bool covers(const Ray& ray) const { return ray.tmax <= reach_; }
   // Whether a triangle meets `ray` in (tmin, tmax): the same answer as the
   // tree's (WideBvh::occluded), the same test on a superset of the triangles
-  // the ray can meet. `ray`: a shadow ray aimed at the light, within reach.
-  bool occluded(const Ray& ray) const {
-    const std::uint32_t c = cell_of(-ray.d);
+  // the ray can meet. `ray`: a shadow ray aimed at the light, within reach;
+  // `from_light`: its cell's direction, the difference of the point it
+  // starts from and the light (any length; -ray.d serves too). The
+  // difference is known a square root and a division before ray.d, and the
+  // occupancy branch below waits on it: 0.969 of fig 8's time (7 pairs).
+  bool occluded(const Ray& ray, const vec3& from_light) const {
+    const std::uint32_t c = cell_of(from_light);
     // Most cells are empty: a bit each (12 KB for the cat's 6 x 125^2) says
     // so without reading the larger index.
     if (!(occupied_[c >> 6] >> (c & 63) & 1u)) return false;

@@ -57,7 +57,7 @@ inline LightArrival direct_light(const World& world, const SurfaceHit& h, const 
   if (!(cos_s > 0.0f && cos_g > 0.0f)) return {};
   ++rays;
   const Ray shadow = spawn_shadow_ray(h, light.position, wi, d2 * inv_d);
-  if (world.occluded_to_light(shadow, d2)) return {};
+  if (world.occluded_to_light(shadow, d2, -to_light)) return {};
   return {true, light_weight(light.intensity, cos_s, to_light, inv_d), cos_g, d2};
 }
 

@@ -98,13 +98,14 @@ class World {
     return ray;
   }
   // occluded() for a shadow ray from a hit point towards light().position,
-  // dist2 = its squared length: when no sphere can stand between them (see
-  // light_clear2_) only the triangles are tested. Same answer as occluded().
-  bool occluded_to_light(const Ray& ray, float dist2) const {
+  // dist2 = its squared length, from_light = the hit point less the light:
+  // when no sphere can stand between them (see light_clear2_) only the
+  // triangles are tested. Same answer as occluded().
+  bool occluded_to_light(const Ray& ray, float dist2, const vec3& from_light) const {
     if (!light_cages_.empty() && outside_a_light_cage(ray)) return true;
     if (dist2 < light_clear2_) {
       if (!mesh_) return false;
-      return light_buffer_.covers(ray) ? light_buffer_.occluded(ray) : mesh_->bvh.occluded(ray);
+      return light_buffer_.covers(ray) ? light_buffer_.occluded(ray, from_light) : mesh_->bvh.occluded(ray);
     }
     return occluded(ray, light_on_.empty() ? kNoSkip : light_sphere_passed(ray));
   }
