@@ -41,10 +41,7 @@ namespace {
     ray = sample_glass(ray, h, m.ior, settings.fresnel, sampler);
     return true;
   }
-  const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, sampler);
-  if (!next) return false;
-  ray = *next;
-  return true;
+  return diffuse_vertex(ctx, ray, h, state, sampler);
 }
 
 }  // namespace
@@ -118,8 +115,8 @@ DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const Surfac
   return out;
 }
 
-std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                                  PathState& state, Sampler& sampler) {
+bool diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h, PathState& state,
+                    Sampler& sampler) {
   const RenderSettings& settings = ctx.settings;
   const bool bounces = settings.indirect && state.depth != settings.max_depth;
   // The light path is chosen first, so that a cached one is read from
@@ -129,7 +126,7 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
       connect ? pick_light_path(ctx, state.beta, sampler, hidden_sphere(in, h)) : LightPick{};
   const DirectLight direct = add_direct_light(ctx, in, h, state.beta, state.from);
   state.L += direct.L;
-  if (!bounces) return std::nullopt;
+  if (!bounces) return false;
   const int split = split_factor(settings, state.diffuse_hits++, state.beta);
   const Frame frame(direct.n.ns);
   if (split > 1) {
@@ -143,14 +140,20 @@ std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const S
     }
     state.L = state.L + sum / float(split);
     if (connect) state.L += light_connection(ctx, {h, direct.n, state.beta, split}, pick);
-    return std::nullopt;
+    return false;
   }
-  const Ray next = sample_diffuse(h, frame, sampler);
+  float u1, u2;
+  sampler.get2d(u1, u2);
+  const vec3 d = cosine_direction(frame, u1, u2);
   if (connect) {
-    state.from = departure(direct.n, next.d, 1, pick.scale);
+    state.from = departure(direct.n, d, 1, pick.scale);
     state.L += light_connection(ctx, {h, direct.n, state.beta, 1}, pick);
   }
-  return next;
+  // Last, once `in` (which may be state.ray) is read no more, and built in
+  // place: a ray built on the stack field by field and then copied whole
+  // is read back by wide loads that wait for its narrow stores.
+  state.ray = spawn_ray(h, d);
+  return true;
 }
 
 void camera_paths(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <span>
 
 #include <xmmintrin.h>
@@ -127,11 +126,11 @@ DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const Surfac
 // albedo already in its beta): adds its direct light to state.L and, when
 // the path goes on, its light connection (RenderSettings::connect), and
 // either splits (the branches' mean added to state.L; the path ends:
-// returns nothing) or returns the one bounce the caller follows, state.from
-// set for it. Nothing also where the path ends. Counts the hit in
-// state.diffuse_hits.
-std::optional<Ray> diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                                  PathState& state, Sampler& sampler);
+// returns false) or writes the one bounce the caller follows into
+// state.ray, state.from set for it, and returns true. False also where the
+// path ends. Counts the hit in state.diffuse_hits.
+bool diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
+                    PathState& state, Sampler& sampler);
 
 // Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a tile's
 // samples are traced (render_tile: once a tile, as reading and writing MXCSR

@@ -104,9 +104,9 @@ vec3 send_bounces(const PathContext& ctx, const Technique& t, Sampler& sampler,
     y.owner = t.pixel;
     y.sphere = h.sphere;
     PathState state{ray, beta, 1, 1};
-    if (const std::optional<Ray> next = diffuse_vertex(ctx, ray, h, state, branch)) {
+    if (diffuse_vertex(ctx, ray, h, state, branch)) {
       y.Lo = state.L;
-      PathState rest{*next, beta, 2, state.diffuse_hits};
+      PathState rest{state.ray, beta, 2, state.diffuse_hits};
       rest.from = state.from;  // the light connection's weight at the next vertex
       y.Lo += trace_path(ctx, rest, branch);
     } else {
