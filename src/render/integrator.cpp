@@ -169,10 +169,12 @@ void camera_paths(const PathContext& ctx, const CameraFrame& cam, std::span<cons
   }
   vec3 d[8];
   cam.directions(lanes, aa, d);
-  // Every camera ray starts at the camera: one origin, split once.
-  const Ray origin = ctx.world.to_render(cam.origin, vec3(0.0f, 0.0f, -1.0f));
+  // Every camera ray starts at the camera: one origin, split once, in one
+  // path state copied to each (a state built anew for each lane was read
+  // back by wide loads that waited on its narrow stores).
+  const PathState start{ctx.world.to_render(cam.origin, vec3(0.0f, 0.0f, -1.0f))};
   for (int l = 0; l < lanes.n; ++l) {
-    out[l] = PathState{origin};
+    out[l] = start;
     out[l].ray.d = d[l];
   }
 }
