@@ -272,7 +272,6 @@ TEST(Sphere, BatchOfEightRaysAgreesWithOneAtATime) {
     for (int batch = 0; batch < 20000; ++batch) {
       Ray rays[8];
       const Ray* ptr[8];
-      float tmax[8];
       for (int l = 0; l < 8; ++l) {
         if (unit(g) < 0.5f) {
           rays[l] = Ray{vec3(u(g), u(g) * 0.5f + 20.0f, u(g)), uniform_direction(g)};
@@ -287,19 +286,19 @@ TEST(Sphere, BatchOfEightRaysAgreesWithOneAtATime) {
           rays[l] = spawn_from(p, ng, lo, unit(g) < 0.5f ? k : kNoSkip, outward, uniform_direction(g));
           ++spawned_rays;
         }
-        tmax[l] = unit(g) < 0.25f ? 100.0f * unit(g) : kInf;
+        rays[l].tmax = unit(g) < 0.25f ? 100.0f * unit(g) : kInf;
         ptr[l] = &rays[l];
       }
       const unsigned lanes = unsigned(g() & 0xffu);
       float t[8];
       std::uint32_t index[8];
-      const unsigned found = set.intersect_batch(ptr, lanes, tmax, t, index);
+      const unsigned found = set.intersect_batch(ptr, lanes, t, index);
       ASSERT_EQ(found & ~lanes, 0u);
       for (int l = 0; l < 8; ++l) {
         if (!(lanes >> l & 1u)) continue;
         float t1 = kInf;
         std::uint32_t i1 = 0;
-        const bool hit = set.intersect(rays[l], tmax[l], t1, i1);
+        const bool hit = set.intersect(rays[l], rays[l].tmax, t1, i1);
         ASSERT_EQ(hit, bool(found >> l & 1u)) << "batch " << batch << " lane " << l;
         if (!hit) continue;
         ++hits;

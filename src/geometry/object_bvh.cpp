@@ -75,15 +75,12 @@ unsigned ObjectBvh::intersect_batch(const Ray* const* rays, unsigned lanes, Hit*
     }
     return found;
   }
-  // intersect_leaf(), its sphere step for all the lanes first.
+  // intersect_leaf(), its sphere step for all the lanes first (bounded by
+  // the rays' own tmax: the hits start as none).
   const Leaf& leaf = leaves_[0];
-  float tmax[8], t[8];
+  float t[8];
   std::uint32_t id[8];
-  for (unsigned a = lanes; a; a &= a - 1) {
-    const int l = __builtin_ctz(a);
-    tmax[l] = std::min(rays[l]->tmax, hits[l].t);
-  }
-  found = leaf.spheres.intersect_batch(rays, lanes, tmax, t, id);
+  found = leaf.spheres.intersect_batch(rays, lanes, t, id);
   for (unsigned a = found; a; a &= a - 1) {
     const int l = __builtin_ctz(a);
     hits[l].t = t[l];

@@ -25,7 +25,8 @@ class ObjectBvh {
   // Sphere and prim = their index in `spheres`; the mesh's hits come from
   // `mesh`. Returns whether hit was updated.
   bool intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const;
-  // intersect(*rays[l], hits[l], mesh) for each lane l in `lanes` (l < 8);
+  // intersect(*rays[l], hits[l], mesh) for each lane l in `lanes` (l < 8),
+  // each hits[l] starting as none, its t the ray's tmax (World::closest_batch);
   // a scene of one leaf with at most eight spheres (the report's) meets its
   // spheres eight rays at a time (SphereSet::intersect_batch). Returns the
   // lanes whose hit was updated.

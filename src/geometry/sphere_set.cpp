@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 
@@ -248,6 +249,71 @@ bool SphereSet::occluded(const Ray& r, std::uint32_t end_sphere) const {
   return res == kFound;
 }
 
+namespace {
+
+// The lanes' rays as vectors, read from the rays themselves: the first 32
+// bytes of each (o, d, tmin, tmax) transposed, and skip and far_only from
+// the next 8. Lanes gathered by scalar stores into arrays and read back as
+// vectors waited on those stores (a store-to-load forward fails across
+// several stores). Lanes not in `lanes` repeat a lane that is.
+struct RayLanes {
+  __m256 ox, oy, oz, dx, dy, dz, tmin, tmax, skip, far_only;
+};
+
+static_assert(offsetof(Ray, o) == 0 && offsetof(Ray, d) == 12 && offsetof(Ray, tmin) == 24 &&
+              offsetof(Ray, tmax) == 28 && offsetof(Ray, skip) == 32 &&
+              offsetof(Ray, far_only) == 36, "RayLanes reads a Ray's fields by offset");
+
+RayLanes load_lanes(const Ray* const* rays, unsigned lanes) {
+  const Ray* r[8];
+  const Ray* live = rays[__builtin_ctz(lanes)];
+  for (int l = 0; l < 8; ++l) r[l] = lanes >> l & 1u ? rays[l] : live;
+  __m256 row[8];
+  for (int l = 0; l < 8; ++l) row[l] = _mm256_loadu_ps(&r[l]->o.x);
+  // 8 x 8 transpose: pairs of rows interleaved, then quads, then halves.
+  __m256 q[8];
+  for (int k = 0; k < 8; k += 4) {
+    const __m256 a = _mm256_unpacklo_ps(row[k], row[k + 1]);
+    const __m256 b = _mm256_unpackhi_ps(row[k], row[k + 1]);
+    const __m256 c = _mm256_unpacklo_ps(row[k + 2], row[k + 3]);
+    const __m256 d = _mm256_unpackhi_ps(row[k + 2], row[k + 3]);
+    q[k] = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(1, 0, 1, 0));
+    q[k + 1] = _mm256_shuffle_ps(a, c, _MM_SHUFFLE(3, 2, 3, 2));
+    q[k + 2] = _mm256_shuffle_ps(b, d, _MM_SHUFFLE(1, 0, 1, 0));
+    q[k + 3] = _mm256_shuffle_ps(b, d, _MM_SHUFFLE(3, 2, 3, 2));
+  }
+  RayLanes v;
+  v.ox = _mm256_permute2f128_ps(q[0], q[4], 0x20);
+  v.oy = _mm256_permute2f128_ps(q[1], q[5], 0x20);
+  v.oz = _mm256_permute2f128_ps(q[2], q[6], 0x20);
+  v.dx = _mm256_permute2f128_ps(q[3], q[7], 0x20);
+  v.dy = _mm256_permute2f128_ps(q[0], q[4], 0x31);
+  v.dz = _mm256_permute2f128_ps(q[1], q[5], 0x31);
+  v.tmin = _mm256_permute2f128_ps(q[2], q[6], 0x31);
+  v.tmax = _mm256_permute2f128_ps(q[3], q[7], 0x31);
+  // skip and the word holding far_only (its other bytes are padding).
+  __m128i half[2][2];
+  for (int h = 0; h < 2; ++h) {
+    __m128i p[4];
+    for (int k = 0; k < 4; ++k)
+      p[k] = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(&r[4 * h + k]->skip));
+    const __m128i a = _mm_unpacklo_epi32(p[0], p[1]), b = _mm_unpacklo_epi32(p[2], p[3]);
+    half[h][0] = _mm_unpacklo_epi64(a, b);
+    half[h][1] = _mm_unpackhi_epi64(a, b);
+  }
+  const __m256i skip = _mm256_set_m128i(half[1][0], half[0][0]);
+  const __m256i word = _mm256_set_m128i(half[1][1], half[0][1]);
+  // No sphere to skip: -2, which matches no sphere's index (padding is -1).
+  v.skip = _mm256_blendv_ps(_mm256_cvtepi32_ps(skip), _mm256_set1_ps(-2.0f),
+                            _mm256_castsi256_ps(_mm256_cmpeq_epi32(skip, _mm256_set1_epi32(-1))));
+  const __m256i flag = _mm256_and_si256(word, _mm256_set1_epi32(0xff));
+  v.far_only = _mm256_castsi256_ps(
+      _mm256_xor_si256(_mm256_cmpeq_epi32(flag, _mm256_setzero_si256()), _mm256_set1_epi32(-1)));
+  return v;
+}
+
+}  // namespace
+
 // Eight rays at once, one per lane, against each sphere in turn: for the
 // report's scenes (six walls, up to four balls) one ray against the spheres'
 // lanes is a chain of dependent steps (sqrt, then a division, then a
@@ -256,26 +322,13 @@ bool SphereSet::occluded(const Ray& r, std::uint32_t end_sphere) const {
 // on the same numbers as intersect_pass(), so it finds the same roots; a ray
 // that would take intersect_pass()'s second pass (near a sphere, or a tie)
 // is solved by intersect() itself.
-unsigned SphereSet::intersect_batch(const Ray* const* rays, unsigned lanes, const float* tmax,
-                                    float* t_out, std::uint32_t* index) const {
+unsigned SphereSet::intersect_batch(const Ray* const* rays, unsigned lanes, float* t_out,
+                                    std::uint32_t* index) const {
   assert(batchable());
-  alignas(32) float ox[8] = {}, oy[8] = {}, oz[8] = {}, dx[8] = {}, dy[8] = {}, dz[8] = {};
-  alignas(32) float tmn[8] = {}, tmx[8] = {}, skp[8] = {};
-  alignas(32) std::int32_t fo[8] = {};
-  for (unsigned a = lanes; a; a &= a - 1) {
-    const int l = __builtin_ctz(a);
-    const Ray& r = *rays[l];
-    ox[l] = r.o.x, oy[l] = r.o.y, oz[l] = r.o.z;
-    dx[l] = r.d.x, dy[l] = r.d.y, dz[l] = r.d.z;
-    tmn[l] = r.tmin;
-    tmx[l] = tmax[l];
-    skp[l] = r.skip == kNoSkip ? -2.0f : float(r.skip);
-    fo[l] = r.far_only ? -1 : 0;
-  }
-  const __m256 vox = _mm256_load_ps(ox), voy = _mm256_load_ps(oy), voz = _mm256_load_ps(oz);
-  const __m256 vdx = _mm256_load_ps(dx), vdy = _mm256_load_ps(dy), vdz = _mm256_load_ps(dz);
-  const __m256 vtmin = _mm256_load_ps(tmn), vtmax = _mm256_load_ps(tmx), vskip = _mm256_load_ps(skp);
-  const __m256 vfar = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(fo)));
+  if (!lanes) return 0;
+  const RayLanes v = load_lanes(rays, lanes);
+  const __m256 vox = v.ox, voy = v.oy, voz = v.oz, vdx = v.dx, vdy = v.dy, vdz = v.dz;
+  const __m256 vtmin = v.tmin, vtmax = v.tmax, vskip = v.skip, vfar = v.far_only;
   __m256 ts[8];
   unsigned retry = 0;
   __m256 m = _mm256_set1_ps(kInf);
@@ -306,7 +359,7 @@ unsigned SphereSet::intersect_batch(const Ray* const* rays, unsigned lanes, cons
   for (unsigned a = lanes; a; a &= a - 1) {
     const int l = __builtin_ctz(a);
     if (retry >> l & 1u) {
-      if (intersect(*rays[l], tmax[l], t_out[l], index[l])) found |= 1u << l;
+      if (intersect(*rays[l], rays[l]->tmax, t_out[l], index[l])) found |= 1u << l;
     } else if (hit >> l & 1u) {
       t_out[l] = tm[l];
       index[l] = id_[std::size_t(kf[l])];

@@ -31,10 +31,10 @@ class SphereSet {
 
   // Whether intersect_batch() serves this set: one to eight spheres.
   bool batchable() const { return count_ > 0 && count_ <= 8; }
-  // intersect(*rays[l], tmax[l], t[l], index[l]) for each lane l (bit l of
-  // `lanes`, l < 8), the rays side by side; returns the lanes that hit.
-  // The same answers as intersect(), ray by ray.
-  unsigned intersect_batch(const Ray* const* rays, unsigned lanes, const float* tmax, float* t,
+  // intersect(*rays[l], rays[l]->tmax, t[l], index[l]) for each lane l
+  // (bit l of `lanes`, l < 8), the rays side by side; returns the lanes that
+  // hit. The same answers as intersect(), ray by ray.
+  unsigned intersect_batch(const Ray* const* rays, unsigned lanes, float* t,
                            std::uint32_t* index) const;
 
  private:
