@@ -43,14 +43,17 @@ struct FacingNormals {
   FacingNormals(const vec3& geometric, const vec3& shading) : ng(geometric), ns(shading) {}
 };
 
-// Diffuse, report section 3: a cosine-distributed bounce in `frame` (built
-// on the facing shading normal), leaving from the hit h; the estimator
-// is then rho * L_in.
-[[gnu::always_inline]] inline Ray sample_diffuse(const SurfaceHit& h, const Frame& frame,
-                                              Sampler& sampler) {
+// Diffuse, report section 3: a cosine-distributed direction in `frame`
+// (built on the facing shading normal); the estimator is then rho * L_in.
+[[gnu::always_inline]] inline vec3 sample_cosine(const Frame& frame, Sampler& sampler) {
   float u1, u2;
   sampler.get2d(u1, u2);
-  return spawn_ray(h, cosine_direction(frame, u1, u2));
+  return cosine_direction(frame, u1, u2);
+}
+// The same as a bounce leaving from the hit h.
+[[gnu::always_inline]] inline Ray sample_diffuse(const SurfaceHit& h, const Frame& frame,
+                                              Sampler& sampler) {
+  return spawn_ray(h, sample_cosine(frame, sampler));
 }
 
 // A perfect mirror about the shading normal.
