@@ -42,7 +42,11 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # with the shorter Progressive.* tests, which do run.
 # The linear-time scene parse: a timing test of 400k objects (the parser's
 # memory safety is the scene fuzzer's job, which runs under ASan + UBSan).
-sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$|^Faults\.scene-parse'
+# The cat room's channel means with and without light connections: eight
+# renders of 32x64 pixels through the code that
+# LightConnect.CatRoomKeepsEachPixelsExpectation runs too, and a statistical
+# check (the slowest core test under both sanitizers, 20-40 s).
+sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$|^Faults\.scene-parse|^LightConnect\.CatRoomKeepsEachChannelsImageMean$'
 # TSan looks for data races, and only the renderer (src/render/progressive.*)
 # starts threads: the suites of the geometry and scene layers, which never
 # do, run under ASan + UBSan only (they are most of the TSan run's time).
