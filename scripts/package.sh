@@ -1,22 +1,27 @@
 #!/bin/bash
-# Builds the Debian package of Whisker: configures and builds build/ (as
-# scripts/run.sh does, installing what is missing), installs it into a
-# staging folder (`cmake --install --strip`, prefix /usr) and packages that
-# with `cpack -G DEB` (the settings in cmake/install.cmake; Depends from the
+# Builds the Debian package of Whisker: configures and builds build-package/
+# (installing what is missing) for any x86-64 processor with AVX2 and FMA
+# (-DWHISKER_NATIVE=OFF: a package built with -march=native would run only on
+# processors like the one that built it), installs it into a staging folder
+# (`cmake --install --strip`, prefix /usr) and packages that with
+# `cpack -G DEB` (the settings in cmake/install.cmake; Depends from the
 # linked libraries through dpkg-shlibdeps).
 #   scripts/package.sh [--no-build] [OUTDIR]   -> OUTDIR/whisker_<version>_<arch>.deb
-# OUTDIR defaults to the build folder. --no-build packages the build as it
-# is (the tests use it: packaging never rebuilds under a running test).
+# OUTDIR defaults to the build folder. --no-build packages $WHISKER_BUILD
+# (default build/) as it is (the tests use it: packaging never rebuilds under
+# a running test).
 set -euo pipefail
 # shellcheck source=common.sh
 source "$(dirname "$0")/common.sh"
 build=1
 if [ "${1:-}" = --no-build ]; then build=0; shift; fi
-out=${1:-$WHISKER_BUILD}
 if [ $build = 1 ]; then
+  WHISKER_BUILD=$WHISKER_ROOT/build-package
   whisker_install
-  whisker_build whisker whisker_man
+  whisker_build_variant "$WHISKER_BUILD" "-DCMAKE_BUILD_TYPE=Release -DWHISKER_NATIVE=OFF \
+    -DWHISKER_TESTS=OFF -DWHISKER_BENCH=OFF -DWHISKER_HEADER_CHECKS=OFF" whisker whisker_man
 fi
+out=${1:-$WHISKER_BUILD}
 [ -x "$WHISKER_BUILD/whisker" ] || { whisker_log "no $WHISKER_BUILD/whisker: build first"; exit 1; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)

@@ -71,8 +71,7 @@ inline void expect_closed_form(const Snapshot& s, const Scene& scene, const Clos
   double chi2 = 0.0;
   for (int i = 0; i < scene.camera.height; ++i) {
     for (int j = 0; j < scene.camera.width; ++j) {
-      const Ray r = cam.ray(i, j, 0.0f, 0.0f);
-      const glm::dvec3 o(r.o), d(r.d);
+      const glm::dvec3 o(cam.origin), d(cam.centre_direction(i, j));
       const double b = glm::dot(o, d);
       const glm::dvec3 y = o + (-b + std::sqrt(b * b - (glm::dot(o, o) - k.R * k.R))) * d;
       const double expect = k.radiance(y, scene.settings.max_depth);

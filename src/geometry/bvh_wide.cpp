@@ -1,9 +1,12 @@
-// The 8-wide BVH: single-ray traversal in AVX2 (bvh_wide_portable.cpp has
-// the scalar fallback, built where the compiler does not target AVX2). The
-// collapse that builds it is in bvh_collapse.cpp.
+// The 8-wide BVH: single-ray traversal in AVX2. The collapse that builds it
+// is in bvh_collapse.cpp.
 #include "geometry/bvh_wide.h"
 
-#if defined(__AVX2__) && defined(__FMA__)
+// Whisker targets AVX2 and FMA (x86-64-v3; CMakeLists.txt): the spheres'
+// batches and the camera's lanes use them too.
+#if !(defined(__AVX2__) && defined(__FMA__))
+#error "Whisker needs AVX2 and FMA: build with -march=native or -march=x86-64-v3"
+#endif
 
 #include <immintrin.h>
 
@@ -336,5 +339,3 @@ bool occluded_by_packets(const Ray& ray, const TriPacket* packets, std::size_t c
 }
 
 }  // namespace whisker
-
-#endif

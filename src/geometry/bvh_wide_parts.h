@@ -1,5 +1,5 @@
-// The parts of the 8-wide tree's traversal that its AVX2 form
-// (bvh_wide.cpp) and its portable form (bvh_wide_portable.cpp) share.
+// The parts of the 8-wide tree's traversal (bvh_wide.cpp) that are not
+// vector code: the slab test's margin, the stack and the node references.
 #pragma once
 
 #include <cmath>

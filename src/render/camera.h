@@ -44,16 +44,16 @@ struct CameraFrame {
     up = glm::cross(right, forward);
   }
 
-  // Pixel (row i from the top, column j) with offset (dx, dy) in pixels:
-  // direction (j - W/2 + 0.5 + dx, H/2 - i - 0.5 - dy, -focal) in camera space.
-  vec3 direction(int i, int j, float dx, float dy) const {
-    const float x = float(j) - half_w + 0.5f + dx;
-    const float y = half_h - float(i) - 0.5f - dy;
-    return glm::normalize(x * right + y * up + focal * forward);
-  }
-  // The same as a world-space ray (its origin rounded to float).
-  Ray ray(int i, int j, float dx, float dy) const {
-    return Ray{vec3(origin), direction(i, j, dx, dy), 0.0f, kInf};
+  // The direction through the centre of pixel (row i from the top, column
+  // j), world space: directions() of one lane without AA (below).
+  vec3 centre_direction(int i, int j) const {
+    Lanes s;
+    s.n = 1;
+    s.i[0] = float(i);
+    s.j[0] = float(j);
+    vec3 d;
+    directions(s, false, &d);
+    return d;
   }
   // Up to eight samples side by side: pixel (i[l], j[l]) and the two
   // uniforms of its AA offset (aa_offset()), for l < n.
@@ -61,9 +61,11 @@ struct CameraFrame {
     int n = 0;
     alignas(32) float i[8] = {}, j[8] = {}, u1[8] = {}, u2[8] = {};
   };
-  // direction() of each of them, written to out[l] (none offset without
-  // `aa`). camera_paths() (integrator.h) is the one caller, for one sample
-  // or more: every camera ray is made here.
+  // The direction of each of them, world space, written to out[l]: pixel
+  // (i, j) with offset (dx, dy) in pixels (none without `aa`) is direction
+  // (j - W/2 + 0.5 + dx, H/2 - i - 0.5 - dy, -focal) in camera space,
+  // normalised. Every camera ray is made here: camera_paths() (integrator.h),
+  // for one sample or more, and centre_direction().
   void directions(const Lanes& s, bool aa, vec3* out) const {
     __m256 dx = _mm256_setzero_ps(), dy = _mm256_setzero_ps();
     if (aa) aa_offset(_mm256_load_ps(s.u1), _mm256_load_ps(s.u2), dx, dy);

@@ -26,7 +26,7 @@ DebugImage render_debug_view(const Scene& scene, int view) {
   for (int i = 0; i < h; ++i) {
     for (int j = 0; j < w; ++j) {
       SurfaceHit hit;
-      if (!world.intersect(world.to_render(cam.origin, cam.direction(i, j, 0.0f, 0.0f)), hit)) continue;
+      if (!world.intersect(world.to_render(cam.origin, cam.centre_direction(i, j)), hit)) continue;
       const std::size_t p = std::size_t(i) * w + j;
       vec3 c(0.0f);
       if (view == kViewNormals) {
