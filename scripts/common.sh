@@ -52,11 +52,26 @@ whisker_build() {
 
 # whisker_build_variant DIR "CMAKE ARGS..." [target...]: configure and build
 # another build folder (the sanitizer builds) with its own cache settings.
+# With WHISKER_VARIANT_CXX set (a C++ compiler's name, e.g. clang++), the
+# folder is built with that compiler (and its C sibling); a cache left by
+# another compiler is removed first, since CMake cannot switch in place.
 whisker_build_variant() {
-  local dir=$1 args=$2 jobs targets=()
+  local dir=$1 args=$2 jobs targets=() cxx=${WHISKER_VARIANT_CXX:-}
   shift 2
   [ $# -gt 0 ] && targets=(--target "$@")
   jobs=$(nproc 2>/dev/null || echo 2)
+  if [ -n "$cxx" ]; then
+    local cxx_path cc_path
+    cxx_path=$(command -v "$cxx") || { whisker_log "no compiler $cxx"; return 1; }
+    cc_path=$(command -v "${cxx%++}") || { whisker_log "no compiler ${cxx%++}"; return 1; }
+    if [ -f "$dir/CMakeCache.txt" ] &&
+        ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=$cxx_path" "$dir/CMakeCache.txt"; then
+      rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
+    fi
+    args="$args -DCMAKE_CXX_COMPILER=$cxx_path -DCMAKE_C_COMPILER=$cc_path"
+  elif [ -f "$dir/CMakeCache.txt" ] && grep -q "^CMAKE_CXX_COMPILER:[A-Z]*=.*clang" "$dir/CMakeCache.txt"; then
+    rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"  # back to the default compiler
+  fi
   # shellcheck disable=SC2086
   cmake -S "$WHISKER_ROOT" -B "$dir" $args >/dev/null || return 1
   cmake --build "$dir" -j "$jobs" "${targets[@]}" || return 1
