@@ -77,6 +77,20 @@ whisker_build_variant() {
   cmake --build "$dir" -j "$jobs" "${targets[@]}" || return 1
 }
 
+# whisker_sanitizer_compiler SAN (address or thread): prints clang++ when
+# clang is installed and links that sanitizer's runtime, else nothing (the
+# default compiler, GCC). The sanitizer builds of scripts/test.sh use it:
+# on the project's 2-core machine clang built the ASan + UBSan step in 165 s
+# against GCC's 252 s, and its tests ran in 161 s against 201 s (TSan: 92 +
+# 53 s against 103 + 83 s).
+whisker_sanitizer_compiler() {
+  local flags=-fsanitize=address,undefined
+  [ "$1" = thread ] && flags=-fsanitize=thread
+  command -v clang++ >/dev/null 2>&1 && command -v clang >/dev/null 2>&1 || return 0
+  echo 'int main() { return 0; }' | clang++ -x c++ "$flags" - -o /dev/null >/dev/null 2>&1 || return 0
+  echo clang++
+}
+
 # The sanitizers' run-time options: every finding fails its test, and the
 # suppression files (third-party noise only, reasons inside) apply.
 whisker_sanitizer_env() {

@@ -83,18 +83,6 @@ run_normal() {
   (cd "$WHISKER_BUILD" && ctest --output-on-failure -j "$((jobs * 2))" "${ctest_args[@]}")
 }
 
-# The sanitizer builds use clang when it can link the sanitizer's runtime:
-# on the project's 2-core machine clang built the ASan + UBSan step in 165 s against
-# GCC's 252 s, and its tests ran in 161 s against 201 s (TSan: 92 + 53 s
-# against 103 + 83 s). Without clang (or its runtime) they use GCC.
-sanitizer_compiler() {  # sanitizer_compiler SAN: prints clang++ or nothing
-  local flags=-fsanitize=address,undefined
-  [ "$1" = thread ] && flags=-fsanitize=thread
-  command -v clang++ >/dev/null 2>&1 && command -v clang >/dev/null 2>&1 || return 0
-  echo 'int main() { return 0; }' | clang++ -x c++ "$flags" - -o /dev/null 2>/dev/null || return 0
-  echo clang++
-}
-
 # run_sanitized NAME SANITIZER [cmake args]: build the core tests into
 # build-NAME and run them with the sanitizer's options.
 run_sanitized() {
@@ -103,7 +91,7 @@ run_sanitized() {
   [ "$name" = asan-viewer ] && targets=()  # everything, viewer included
   # The viewer's sanitizer build keeps GCC: its suppressions and the ImGui
   # backends' recoverable bounds checks were written for it.
-  [ "$name" = asan-viewer ] || cxx=$(sanitizer_compiler "$san")
+  [ "$name" = asan-viewer ] || cxx=$(whisker_sanitizer_compiler "$san")
   whisker_log "$name: compiler ${cxx:-default (c++)}"
   # No header checks: they catch wrong includes, which the Release build
   # already did, and would compile 45 more files per sanitizer.
