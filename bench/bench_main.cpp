@@ -1,10 +1,17 @@
 // whisker-bench rays FILE [--accel brute|bbox|midpoint|sah] [--threads T] [--json]
 //
-// Traces a ray file against the cat alone and prints rays, hits, the sum of
-// hit distances and Mrays/s on one thread and on all threads (median of
-// --reps runs), with Embree 3's rtcIntersect1 on the same rays in the same
-// run when it is built in. Also the build time and bytes per triangle.
+// Traces a ray file (ray_bench.h) against the cat alone and prints rays,
+// hits, the sum of hit distances and Mrays/s on one thread and on all
+// threads (median of --reps runs), with Embree 3's rtcIntersect1 on the
+// same rays in the same run when it is built in. Also the build time and
+// bytes per triangle.
+//
+// whisker-bench make-rays DIR [--seed S]
+//
+// Writes the cat's two ray sets, DIR/cat_primary.rays and
+// DIR/cat_diffuse.rays (ray_bench.h), and prints their counts.
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -143,6 +150,16 @@ int run_rays(const Options& opt) {
   return 0;
 }
 
+int make_rays(const Options& opt, const std::string& dir, std::uint64_t seed) {
+  const std::vector<Ray> primary = bench::make_primary_rays();
+  const std::vector<Ray> diffuse = bench::make_diffuse_rays(bench::load_cat(opt.mesh), primary, seed);
+  bench::write_rays(dir + "/cat_primary.rays", primary);
+  bench::write_rays(dir + "/cat_diffuse.rays", diffuse);
+  std::printf("%s/cat_primary.rays: %zu rays\n%s/cat_diffuse.rays: %zu rays\n", dir.c_str(),
+              primary.size(), dir.c_str(), diffuse.size());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -150,7 +167,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   Options opt;
   CLI::App* rays = app.add_subcommand("rays", "trace a ray file against the cat");
-  rays->add_option("FILE", opt.file, "ray file (../shared/bench/rays/FORMAT.md)")->required();
+  rays->add_option("FILE", opt.file, "ray file (bench/ray_bench.h; make-rays writes the cat's two)")->required();
   rays->add_option("--accel", opt.accel, "brute|bbox|midpoint|sah")
       ->check(CLI::IsMember({"brute", "bbox", "midpoint", "sah"}));
   rays->add_option("--threads", opt.threads, "threads for the all-threads figure")
@@ -164,8 +181,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 5));
   rays->add_flag("--no-embree", opt.no_embree, "skip the Embree comparison");
   rays->add_flag("--min", opt.use_min, "fastest repetition (1 thread: its CPU time) instead of the median");
+  std::string dir;
+  std::uint64_t seed = 1;
+  CLI::App* make = app.add_subcommand("make-rays", "write the cat's primary and diffuse ray sets");
+  make->add_option("DIR", dir, "an existing folder for cat_primary.rays and cat_diffuse.rays")
+      ->required()->check(CLI::ExistingDirectory);
+  make->add_option("--mesh", opt.mesh, "OBJ mesh (scaled 0.6, moved by (0,-10,0))");
+  make->add_option("--seed", seed, "the diffuse directions' seed");
   CLI11_PARSE(app, argc, argv);
   try {
+    if (make->parsed()) return make_rays(opt, dir, seed);
     return run_rays(opt);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "whisker-bench: %s\n", e.what());

@@ -1,5 +1,5 @@
 // Google Benchmark micro-benchmark: single-ray closest hit on the cat with
-// each accelerator, on the diffuse (incoherent) ray file.
+// each accelerator, on the diffuse (incoherent) ray set (ray_bench.h).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -15,7 +15,8 @@ namespace {
 using namespace whisker;
 
 const std::vector<Ray>& rays() {
-  static const std::vector<Ray> r = bench::read_rays(WHISKER_SHARED_DIR "/bench/rays/cat_diffuse.rays");
+  static const std::vector<Ray> r = bench::make_diffuse_rays(
+      bench::load_cat(WHISKER_ASSETS_DIR "/cat.obj"), bench::make_primary_rays(), 1);
   return r;
 }
 

@@ -5,6 +5,14 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/bvh.h"
+#include "io/atomic_file.h"
+#include "render/sampler.h"
+#include "render/sampling.h"
 #include "scene/mesh_io.h"
 
 namespace whisker::bench {
@@ -36,6 +44,54 @@ std::vector<Triangle> load_cat(const std::string& path) {
   for (const auto& t : m.triangles)
     tris.push_back({m.positions[t.x], m.positions[t.y], m.positions[t.z]});
   return tris;
+}
+
+}  // namespace whisker::bench
+
+namespace whisker::bench {
+
+void write_rays(const std::string& path, const std::vector<Ray>& rays) {
+  std::vector<float> f;
+  f.reserve(rays.size() * 7);
+  for (const Ray& r : rays) f.insert(f.end(), {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmax});
+  write_bytes_atomically(path, std::string_view(reinterpret_cast<const char*>(f.data()),
+                                                f.size() * sizeof(float)));
+}
+
+std::vector<Ray> make_primary_rays() {
+  constexpr int kSize = 512;
+  // docs/SCENES.md: pixel (i, j) looks along (j - W/2 + 0.5, H/2 - i - 0.5,
+  // -W / (2 tan(fov / 2))) from (0, 0, 55); fov 60 degrees.
+  const double depth = kSize / (2.0 * std::tan(30.0 * 3.14159265358979323846 / 180.0));
+  std::vector<Ray> rays;
+  rays.reserve(std::size_t(kSize) * kSize);
+  for (int i = 0; i < kSize; ++i)
+    for (int j = 0; j < kSize; ++j) {
+      const glm::dvec3 d(j - kSize / 2 + 0.5, kSize / 2 - i - 0.5, -depth);
+      rays.push_back(Ray{vec3(0.0f, 0.0f, 55.0f), vec3(glm::normalize(d)), 0.0f, kInf});
+    }
+  return rays;
+}
+
+std::vector<Ray> make_diffuse_rays(const std::vector<Triangle>& tris,
+                                   const std::vector<Ray>& primary, std::uint64_t seed) {
+  const Bvh bvh = Bvh::build(tris, BvhMethod::Sah);
+  std::vector<Ray> rays;
+  for (std::size_t k = 0; k < primary.size(); ++k) {
+    Hit hit;
+    if (!bvh.intersect(primary[k], hit)) continue;
+    const Triangle& t = tris[hit.prim];
+    vec3 n = glm::normalize(glm::cross(t.v1 - t.v0, t.v2 - t.v0));
+    if (glm::dot(n, primary[k].d) > 0.0f) n = -n;  // the side the ray came from
+    const vec3 p = primary[k].o + hit.t * primary[k].d + 1e-3f * n;
+    const Frame frame(n);
+    Rng rng(std::uint32_t(k), 0, seed);
+    for (int b = 0; b < 8; ++b) {
+      const float u1 = rng.uniform(), u2 = rng.uniform();
+      rays.push_back(Ray{p, cosine_direction(frame, u1, u2), 0.0f, kInf});
+    }
+  }
+  return rays;
 }
 
 }  // namespace whisker::bench

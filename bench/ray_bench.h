@@ -1,6 +1,17 @@
-// Ray-file benchmark helpers: reading ../shared/bench/rays/*.rays (FORMAT.md
-// there), loading the cat, and timing a closest-hit tracer over the rays on
-// one or several threads.
+// Ray-file benchmark helpers: reading and writing ray files, making the two
+// ray sets of the cat, loading the cat, and timing a closest-hit tracer over
+// the rays on one or several threads.
+//
+// A ray file is binary, little-endian, no header: records of 7 float32,
+// ox oy oz dx dy dz tmax (28 bytes; tmin is 0; tmax may be +inf; unit
+// directions), traced against the cat mesh alone (scaled by 0.6, then moved
+// by (0, -10, 0)) in world space. The two sets (make_primary_rays,
+// make_diffuse_rays) are those of the course's ray files of the same names:
+//   cat_primary.rays  the report's camera, one ray through each pixel
+//                     centre of 512 x 512 (coherent);
+//   cat_diffuse.rays  8 cosine-distributed bounce rays from each camera-ray
+//                     hit on the cat, origins moved 1e-3 off the surface
+//                     (incoherent; the directions depend on the seed).
 #pragma once
 
 #include <algorithm>
@@ -8,6 +19,7 @@
 #include <chrono>
 #include <ctime>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <thread>
 #include <vector>
@@ -20,8 +32,19 @@ namespace whisker::bench {
 // Records of 7 little-endian float32: ox oy oz dx dy dz tmax; tmin is 0.
 std::vector<Ray> read_rays(const std::string& path);
 
+// Writes rays in that format (a temporary file renamed into place).
+void write_rays(const std::string& path, const std::vector<Ray>& rays);
+
 // The cat as the ray files expect it: scaled by 0.6, then moved by (0,-10,0).
 std::vector<Triangle> load_cat(const std::string& path);
+
+// The report's camera at (0, 0, 55), 60 degrees across 512 pixels, one ray
+// through each pixel centre (docs/SCENES.md), rows from the top.
+std::vector<Ray> make_primary_rays();
+// Per primary ray that hits `tris`, 8 directions cosine-distributed about the
+// hit triangle's normal on the ray's side, from the hit moved 1e-3 along it.
+std::vector<Ray> make_diffuse_rays(const std::vector<Triangle>& tris,
+                                   const std::vector<Ray>& primary, std::uint64_t seed);
 
 struct TraceResult {
   std::size_t hits = 0;

@@ -15,7 +15,9 @@
 #
 #   bench/side_by_side.sh          # ~21 minutes on the 2-core machine; quiet machine please
 #
-# Knobs: RUNS (5), RAYS (../shared/bench/rays), WHISKER_BUILD (build), and
+# Knobs: RUNS (5), RAYS (a folder holding cat_primary.rays and
+# cat_diffuse.rays; default: the sets `whisker-bench make-rays` writes into
+# OUT), WHISKER_BUILD (build), and
 # those of the two scripts it calls (BEST_SPP, REPORT_PROGRAM_DIR, ...).
 # Prints one markdown table at the end; the raw outputs stay in OUT
 # ($BUILD/side-by-side).
@@ -23,10 +25,14 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BUILD=${WHISKER_BUILD:-$ROOT/build}
 RUNS=${RUNS:-5}
-RAYS=${RAYS:-$ROOT/../shared/bench/rays}
 OUT=$BUILD/side-by-side
 mkdir -p "$OUT"
 cmake --build "$BUILD" -j 2 --target whisker whisker-bench whisker-compare >/dev/null
+if [ -z "${RAYS:-}" ]; then
+  RAYS=$OUT/rays
+  mkdir -p "$RAYS"
+  "$BUILD/bench/whisker-bench" make-rays "$RAYS" >/dev/null
+fi
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
