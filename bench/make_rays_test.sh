@@ -31,10 +31,13 @@ for i, j in [(0, 0), (0, 511), (255, 256), (511, 3), (300, 200)]:
     assert all(abs(r[3 + k] - d[k] / n) < 1e-6 for k in range(3)), (i, j, r)
 for r in primary + bounce:
     assert abs(math.sqrt(r[3] ** 2 + r[4] ** 2 + r[5] ** 2) - 1) < 1e-5, r
-# A bounce leaves the cat: it meets the mesh again at a distance above the
-# 1e-3 offset or not at all (each of a hit's 8 shares its origin).
-assert 0 < diffuse["hits"] < len(bounce), diffuse
-assert diffuse["distance_sum"] > 1e-3 * diffuse["hits"], diffuse
+# The bounces leave the cat from its outside: most escape it (4 % of them
+# meet it again here), and those that meet it do so far past the 1e-3
+# offset. Started inside, or turned into the surface, nearly all would hit
+# it at about 1e-3.
+assert 0 < diffuse["hits"] < 0.25 * len(bounce), diffuse
+assert diffuse["distance_sum"] > 0.1 * diffuse["hits"], diffuse
+# Each of a hit's 8 shares its origin and has a direction of its own.
 for k in range(0, len(bounce), 8):
     assert len({r[:3] for r in bounce[k:k + 8]}) == 1 and len({r[3:6] for r in bounce[k:k + 8]}) == 8
 print("ok", len(primary), hits, len(bounce))

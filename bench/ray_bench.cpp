@@ -5,12 +5,11 @@
 #include <fstream>
 #include <stdexcept>
 
-#include <cmath>
-
 #include <glm/geometric.hpp>
 
 #include "geometry/bvh.h"
 #include "io/atomic_file.h"
+#include "render/camera.h"
 #include "render/sampler.h"
 #include "render/sampling.h"
 #include "scene/mesh_io.h"
@@ -46,10 +45,6 @@ std::vector<Triangle> load_cat(const std::string& path) {
   return tris;
 }
 
-}  // namespace whisker::bench
-
-namespace whisker::bench {
-
 void write_rays(const std::string& path, const std::vector<Ray>& rays) {
   std::vector<float> f;
   f.reserve(rays.size() * 7);
@@ -59,17 +54,12 @@ void write_rays(const std::string& path, const std::vector<Ray>& rays) {
 }
 
 std::vector<Ray> make_primary_rays() {
-  constexpr int kSize = 512;
-  // docs/SCENES.md: pixel (i, j) looks along (j - W/2 + 0.5, H/2 - i - 0.5,
-  // -W / (2 tan(fov / 2))) from (0, 0, 55); fov 60 degrees.
-  const double depth = kSize / (2.0 * std::tan(30.0 * 3.14159265358979323846 / 180.0));
+  const CameraFrame cam{Camera{}};  // the report's camera (scene.h's defaults)
   std::vector<Ray> rays;
-  rays.reserve(std::size_t(kSize) * kSize);
-  for (int i = 0; i < kSize; ++i)
-    for (int j = 0; j < kSize; ++j) {
-      const glm::dvec3 d(j - kSize / 2 + 0.5, kSize / 2 - i - 0.5, -depth);
-      rays.push_back(Ray{vec3(0.0f, 0.0f, 55.0f), vec3(glm::normalize(d)), 0.0f, kInf});
-    }
+  rays.reserve(std::size_t(cam.width) * std::size_t(cam.height));
+  for (int i = 0; i < cam.height; ++i)
+    for (int j = 0; j < cam.width; ++j)
+      rays.push_back(Ray{vec3(cam.origin), cam.centre_direction(i, j), 0.0f, kInf});
   return rays;
 }
 

@@ -39,7 +39,7 @@ void write_rays(const std::string& path, const std::vector<Ray>& rays);
 std::vector<Triangle> load_cat(const std::string& path);
 
 // The report's camera at (0, 0, 55), 60 degrees across 512 pixels, one ray
-// through each pixel centre (docs/SCENES.md), rows from the top.
+// through each pixel centre (CameraFrame::centre_direction), rows from the top.
 std::vector<Ray> make_primary_rays();
 // Per primary ray that hits `tris`, 8 directions cosine-distributed about the
 // hit triangle's normal on the ray's side, from the hit moved 1e-3 along it.

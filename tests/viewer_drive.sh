@@ -233,6 +233,7 @@ in_xvfb() {  # [seconds]
   kill "$xpid" 2>/dev/null
   wait "$xpid" 2>/dev/null
   [ -s "$dir/waits.err" ] && { echo "--- waits that timed out"; cat "$dir/waits.err"; }
+  [ -s "$dir/retries.err" ] && { echo "--- viewers started again (open_viewer)"; cat "$dir/retries.err"; }
   return 0
 }
 
