@@ -20,31 +20,15 @@ MSE per pixel over the image's, and which channels its error is in; then
 the image's error by channel. Plain Python: no package needed.
 """
 import json
-import struct
 import sys
+
+from pfm import read_pfm
 
 WHITE = 255.0 ** 2.2
 
 
-def read_pfm(path):
-    """(width, height, values): the colour values divided by WHITE, row by row."""
-    try:
-        with open(path, "rb") as f:
-            kind = f.readline().strip()
-            if kind != b"PF":
-                sys.exit(f"{path}: not a colour PFM (header {kind!r})")
-            try:
-                width, height = map(int, f.readline().split())
-                scale = float(f.readline())
-            except ValueError:
-                sys.exit(f"{path}: malformed PFM header")
-            data = f.read()
-    except OSError as e:
-        sys.exit(f"{path}: {e.strerror}")
-    count = width * height * 3
-    if width <= 0 or height <= 0 or len(data) != 4 * count:
-        sys.exit(f"{path}: {len(data)} bytes of data, expected {4 * count} for {width}x{height}")
-    values = struct.unpack(("<" if scale < 0 else ">") + f"{count}f", data)
+def read_scaled(path):
+    width, height, values = read_pfm(path, "error_by_region")
     return width, height, [v / WHITE for v in values]
 
 
@@ -93,7 +77,7 @@ def main(argv):
         del args[k:k + 2]
     if len(args) != 2:
         sys.exit(__doc__.split("\n\n")[1])
-    (wa, ha, a), (wb, hb, b) = read_pfm(args[0]), read_pfm(args[1])
+    (wa, ha, a), (wb, hb, b) = read_scaled(args[0]), read_scaled(args[1])
     if (wa, ha) != (wb, hb):
         sys.exit(f"{args[0]} is {wa}x{ha}, {args[1]} is {wb}x{hb}")
     out = analyse(a, b)

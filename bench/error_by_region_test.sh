@@ -55,7 +55,7 @@ expect_fail() {  # pattern args...
   fi
   grep -q "$pattern" "$dir/err.txt" || { echo "message for $*:"; cat "$dir/err.txt"; exit 1; }
 }
-expect_fail "missing.pfm: No such file" "$dir/missing.pfm" "$dir/b.pfm"
+expect_fail "error_by_region: .*missing.pfm: No such file" "$dir/missing.pfm" "$dir/b.pfm"
 expect_fail "is 4x2, .*small.pfm is 2x2" "$dir/a.pfm" "$dir/small.pfm"
 head -c 40 "$dir/a.pfm" >"$dir/cut.pfm"
 expect_fail "cut.pfm: .* expected 96" "$dir/a.pfm" "$dir/cut.pfm"

@@ -29,20 +29,16 @@ import sys
 import numpy as np
 from PIL import Image
 
+from pfm import read_pfm
+
 WHITE = 255.0 ** 2.2
 LUMA = np.array([0.2126, 0.7152, 0.0722])
 
 
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        if kind != b"PF":
-            raise SystemExit(f"error_spectrum: {path}: not an RGB PFM")
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    img = data.reshape(h, w, 3)[::-1]  # PFM rows run bottom to top
-    return img.astype(np.float64)
+def read_image(path):
+    w, h, values = read_pfm(path, "error_spectrum")
+    img = np.array(values, dtype=np.float64).reshape(h, w, 3)[::-1]  # PFM rows run bottom to top
+    return img
 
 
 def radial_power(e):
@@ -66,7 +62,7 @@ def main():
     curves = []
     for arg in sys.argv[2:]:
         label, a, b, secs = arg.rsplit(":", 3)
-        e = ((read_pfm(a) - read_pfm(b)) / np.sqrt(2.0) / WHITE) @ LUMA
+        e = ((read_image(a) - read_image(b)) / np.sqrt(2.0) / WHITE) @ LUMA
         grey = np.clip(128 + e / 0.1 * 127, 0, 255).astype(np.uint8)
         Image.fromarray(grey, mode="L").save(f"{prefix}-noise-{label}.png")
         f, p = radial_power(e)
