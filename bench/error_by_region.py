@@ -72,14 +72,14 @@ def main(argv):
     if "--json" in args:
         k = args.index("--json")
         if k + 1 >= len(args):
-            sys.exit("--json needs a file name")
+            sys.exit("error_by_region: --json needs a file name")
         json_out = args[k + 1]
         del args[k:k + 2]
     if len(args) != 2:
         sys.exit(__doc__.split("\n\n")[1])
     (wa, ha, a), (wb, hb, b) = read_scaled(args[0]), read_scaled(args[1])
     if (wa, ha) != (wb, hb):
-        sys.exit(f"{args[0]} is {wa}x{ha}, {args[1]} is {wb}x{hb}")
+        sys.exit(f"error_by_region: {args[0]} is {wa}x{ha}, {args[1]} is {wb}x{hb}")
     out = analyse(a, b)
     print(f"MSE of one image {out['mse']:.4g}")
     print("region  pixels  error  MSE/pixel  error in R, G, B   mean R, G, B")

@@ -56,10 +56,11 @@ expect_fail() {  # pattern args...
   grep -q "$pattern" "$dir/err.txt" || { echo "message for $*:"; cat "$dir/err.txt"; exit 1; }
 }
 expect_fail "error_by_region: .*missing.pfm: No such file" "$dir/missing.pfm" "$dir/b.pfm"
-expect_fail "is 4x2, .*small.pfm is 2x2" "$dir/a.pfm" "$dir/small.pfm"
+expect_fail "error_by_region: .*a.pfm is 4x2, .*small.pfm is 2x2" "$dir/a.pfm" "$dir/small.pfm"
 head -c 40 "$dir/a.pfm" >"$dir/cut.pfm"
 expect_fail "cut.pfm: .* expected 96" "$dir/a.pfm" "$dir/cut.pfm"
 printf 'P6\n1 1\n255\nabc' >"$dir/ppm.pfm"
 expect_fail "ppm.pfm: not a colour PFM" "$dir/ppm.pfm" "$dir/a.pfm"
-expect_fail "usage\|A.pfm B.pfm" "$dir/a.pfm"
+expect_fail "A.pfm B.pfm" "$dir/a.pfm"
+expect_fail "error_by_region: --json needs a file name" "$dir/a.pfm" "$dir/b.pfm" --json
 echo "error_by_region: regions, shares and bad input as expected"
