@@ -12,7 +12,7 @@ WHISKER_PACKAGES=(
   libgtest-dev libbenchmark-dev libembree-dev
   libglfw3-dev libimgui-dev python3-glad libgl-dev libgl1-mesa-dri xvfb xauth xdotool
   x11-apps  # xwd: the viewer tests' screenshots of the real window
-  dpkg-dev desktop-file-utils man-db  # the package (dpkg-shlibdeps) and its checks
+  dpkg-dev file desktop-file-utils man-db  # the package (dpkg-shlibdeps; CPack's DEB generator runs file) and its checks
 )
 
 whisker_log() { printf '\033[1mwhisker:\033[0m %s\n' "$*" >&2; }

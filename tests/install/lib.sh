@@ -17,7 +17,12 @@ install_prefix() {
 # hidden CMD...: runs CMD with the source tree (which holds the build
 # folder) hidden under an empty tmpfs, in a mount namespace of its own, and
 # without the WHISKER_* variables; from an empty working folder. Where mount
-# namespaces are not allowed, runs it with the variables unset only, and says so.
+# namespaces are not allowed (a chroot, many containers), runs it with the
+# variables unset only; the note saying so goes to the test's own log, once,
+# never into the output of CMD that a test then reads.
+if ! unshare -rm true 2>/dev/null; then
+  echo "note: no mount namespace here; the source tree stays visible" >&2
+fi
 hidden() {
   mkdir -p "$tmp/cwd"
   local clean=(env -u WHISKER_ASSETS -u WHISKER_SCENES -u WHISKER_SHADERS)
@@ -25,7 +30,6 @@ hidden() {
     (cd "$tmp/cwd" && "${clean[@]}" unshare -rm sh -c \
       'mount -t tmpfs none "$0" && test -z "$(ls -A "$0")" && exec "$@"' "$src" "$@")
   else
-    echo "note: no mount namespace here; the source tree stays visible" >&2
     (cd "$tmp/cwd" && "${clean[@]}" "$@")
   fi
 }
