@@ -9,7 +9,7 @@
 # e.g. the binary of another commit against this build, on the cat:
 #   git worktree add /tmp/old HEAD~5 && cmake -S /tmp/old -B /tmp/old/build \
 #     -DCMAKE_BUILD_TYPE=Release && cmake --build /tmp/old/build -j2 --target whisker
-#   bench/ab_time.sh /tmp/old/build/whisker build/whisker 7 -- --scene cat --spp 4 --reuse 1
+#   bench/ab_time.sh /tmp/old/build/whisker build/whisker 7 -- --scene cat --spp 4
 # Default arguments: --scene cat --frames 1 --spp 4; RUNS defaults to 7.
 set -euo pipefail
 [ $# -ge 2 ] || { sed -n 2,13p "$0"; exit 2; }

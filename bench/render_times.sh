@@ -28,13 +28,13 @@ trap 'rm -rf "$out"' EXIT
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 
-# One render, one path per sample and pixel (--split 1, no path reuse), as
+# One render, one path per sample and pixel (--split 1), as
 # the report's program: the figures compare with its times per sample.
 # Prints its seconds (from --stats, left in JSON).
 render_once() {  # json, whisker options...
   local json=$1
   shift
-  "$bin" --headless --quiet --split 1 --reuse 1 --connect off "$@" --stats "$json" >/dev/null
+  "$bin" --headless --quiet --split 1 --connect off "$@" --stats "$json" >/dev/null
   python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["seconds"])' "$json"
 }
 

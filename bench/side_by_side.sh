@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Issue 19's figures in one run, each comparison with the other program run
+# The comparison figures in one run, each comparison with the other program run
 # beside Whisker in this same script (never a constant from a document):
 #   1. the cat target at every scale (bench/cat_target.sh): time to the
 #      error the report's program has at 1024 spp, at 1, 2, 4, 8 and 16 px,
 #      against that program's time; the headline is the worst scale, and the
-#      run fails when the defaults lose to the estimator without path reuse;
+#      run fails when the defaults lose to the estimator without light connections;
 #   2. rays per second against Embree, one thread, RUNS runs of each ray set,
 #      the two sets alternating (Embree's repetitions alternate with
 #      Whisker's inside each run);
@@ -55,7 +55,7 @@ WHISKER_BUILD=$BUILD "$ROOT/bench/render_times.sh" 3 | tee "$OUT/render_times.tx
 echo "== 4. the viewer"
 if command -v xvfb-run >/dev/null 2>&1; then
   LIBGL_ALWAYS_SOFTWARE=1 xvfb-run -a -s "-screen 0 1280x800x24" "$BUILD/whisker" --scene cat \
-    --split 1 --reuse 1 --connect off --frames 60 --screenshot "$OUT/viewer.png" 2>&1 | tail -1 | tee "$OUT/viewer.txt"
+    --split 1 --connect off --frames 60 --screenshot "$OUT/viewer.png" 2>&1 | tail -1 | tee "$OUT/viewer.txt"
 else
   echo "no xvfb-run: skipped" | tee "$OUT/viewer.txt"
 fi
@@ -86,7 +86,7 @@ for name, aim in (("primary", "1.2x"), ("diffuse", "1.1x")):
                 f"{'' if same else ' HITS DIFFER'} | {aim} |")
 times = open(f"{out}/render_times.txt").read()
 report = re.search(r"fig 8 at 1024 spp, \d+ threads: ([\d.]+) s", times)
-for label, name, aim in (("fig 8 at the report's settings (1024 one-path samples, no reuse, its independent random numbers)", "cat \\(fig 8\\)", "12x"),
+for label, name, aim in (("fig 8 at the report's settings (1024 one-path samples, its independent random numbers)", "cat \\(fig 8\\)", "12x"),
                          ("fig 8 with Whisker's Sobol points (half the error at equal samples)", "cat \\(fig 8, Sobol\\)", "")):
     fig8 = re.search(r"\| " + name + r" \| 1024 \| ([\d.]+) \|", times)
     if fig8 and report:

@@ -24,7 +24,7 @@
 #      ($BUILD/convergence/table.md, also printed) that goes into
 #      docs/PERFORMANCE.md.
 #
-# Methods: "report" = --sampler independent --zero-cutoff off --split 1 --reuse 1 (independent
+# Methods: "report" = --sampler independent --zero-cutoff off --split 1 (independent
 # uniform numbers, Gaussian jitter, fixed depth: the report's estimator);
 # "best" = Whisker's defaults, whatever they are (the flags used are read back
 # from the stats JSON into the CSV).
@@ -65,7 +65,7 @@ SCENE_DIR=$OUT/scenes
 no_timer() { shift; "$@"; }
 TIMER=(/usr/bin/time -f "%U %S" -o)
 [ -x /usr/bin/time ] || TIMER=(no_timer)
-REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1 --split-weights 1,1,1 --reuse 1 --connect off)
+REPORT_FLAGS=(--sampler independent --zero-cutoff off --split 1 --split-weights 1,1,1 --connect off)
 # Whisker best: the defaults, or BEST_FLAGS (e.g. "--split 1" for the
 # single-path estimator the table in docs/PERFORMANCE.md was measured with).
 read -r -a BEST_FLAGS <<<"${BEST_FLAGS:-}"

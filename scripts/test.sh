@@ -56,11 +56,11 @@ sanitizer_exclude='^Accumulation\.MillionsOfSamplesKeepPrecision$|^Faults\.scene
 # the same renderer). The test files holding only such suites are not even
 # built under TSan (tests/CMakeLists.txt).
 # The estimators' agreement with closed forms and per-pixel images
-# (Estimators/, Splits/, PathReuse.*) check numbers, renders of one pass
+# (Estimators/, Splits/) check numbers, renders of one pass
 # through the same workers as the Progressive.* and LightConnect.* tests,
 # which do run, as do the Headless.* tests but the one that renders every
 # sphere scene (ASan + UBSan run it).
-tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|LightBuffer|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase|Shards|CommandLineE2E|PathReuse)\.|^(Estimators|Splits)/|^Headless\.EverySphereScene"
+tsan_exclude="$sanitizer_exclude|^(Bvh|ObjectBvh|LightBuffer|Sphere|Triangle|Sampler|MeshIo|SceneFiles|World|Fuzz|HardCase|Shards|CommandLineE2E|)\.|^(Estimators|Splits)/|^Headless\.EverySphereScene"
 # The core tests: unit, end-to-end, fuzz replays, faults (not the benches,
 # not the viewer, which the sanitizer builds leave out).
 sanitizer_targets=(whisker whisker_tests fuzz_scene_replay fuzz_obj_replay fuzz_part_replay)

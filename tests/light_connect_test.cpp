@@ -1,7 +1,7 @@
 // Light connections (render/light_connect.h): the weights of the two ways to
 // make a path sum to 1; with them on, every pixel keeps its expectation (a
 // closed form inside a sphere; the per-pixel images of the cat's room and
-// of the room with glass and a mirror, with splitting and with path reuse;
+// of the room with glass and a mirror, with splitting;
 // a light exactly on a wall); and they do what they are for, less noise in
 // the cat's room.
 #include <gtest/gtest.h>
@@ -107,23 +107,20 @@ TEST(LightConnect, BounceWeightIsOneWhereNoLightPathReaches) {
 // (a cosine-sampled direction inside a sphere lands uniformly on its area;
 // integrator tests), B = depth + 1. With light connections each pixel mean
 // sits within a few standard errors of it, for one path per sample,
-// splitting, the independent sampler and path reuse.
+// splitting and the independent sampler.
 struct ConnectCase {
   std::vector<int> split;
   SamplerKind sampler;
-  int reuse = 1;
 };
 class ConnectClosedSphere : public ::testing::TestWithParam<ConnectCase> {};
 
 INSTANTIATE_TEST_SUITE_P(Estimators, ConnectClosedSphere,
                          ::testing::Values(ConnectCase{{1}, SamplerKind::Sobol},
                                            ConnectCase{{4, 2}, SamplerKind::Sobol},
-                                           ConnectCase{{3, 2}, SamplerKind::Independent},
-                                           ConnectCase{{2, 2}, SamplerKind::Sobol, 2}),
+                                           ConnectCase{{3, 2}, SamplerKind::Independent}),
                          [](const auto& info) {
                            std::string name = to_string(info.param.sampler);
                            for (int k : info.param.split) name += "Split" + std::to_string(k);
-                           if (info.param.reuse > 1) name += "Reuse" + std::to_string(info.param.reuse);
                            return name;
                          });
 
@@ -139,7 +136,6 @@ TEST_P(ConnectClosedSphere, OffCentreLightKeepsTheClosedForm) {
     st.connect = true;
     st.split = GetParam().split;
     st.sampler = GetParam().sampler;
-    st.reuse = GetParam().reuse;
     expect_closed_form(render(scene), scene, ClosedSphereLight{rho, I, R, c},
                        "depth " + std::to_string(depth));
   }
@@ -189,14 +185,6 @@ TEST(LightConnect, GlassAndMirrorRoomKeepsEachPixelsExpectation) {
   Scene off = small("indirect", 20, 96, false, 11), on = small("indirect", 20, 96, true, 22);
   off.settings.split = on.settings.split = {2, 2};
   expect_same_expectation(render(off), render(on), "indirect");
-}
-
-// With path reuse, the second vertices' connections keep each pixel's
-// expectation too.
-TEST(LightConnect, WithPathReuseKeepsEachPixelsExpectation) {
-  Scene off = small("cat", 20, 64, false, 11), on = small("cat", 20, 64, true, 22);
-  on.settings.reuse = 4;
-  expect_same_expectation(render(off), render(on), "cat reuse 4");
 }
 
 // A light exactly on top of a white ball in the cat's room, a convex sphere

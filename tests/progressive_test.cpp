@@ -126,10 +126,9 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   // The viewer's quick passes (set_preview): an edit's first images are
   // whole passes of one path per sample, published apart from the
   // generation's own, pixel for pixel what a render with the quick settings
-  // gives (no blocks, no mosaic).
+  // gives.
   Scene scene = sized("indirect", 96, 80, 1, 2);
   scene.settings.split = {4, 4};
-  scene.settings.reuse = 4;
   ASSERT_TRUE(cheap_differs(scene.settings));
   ProgressiveRenderer r(1);
   r.set_preview(true);
@@ -225,7 +224,6 @@ TEST(Progressive, QuickPassesOnlyWhenTheyAreCheaper) {
   s.indirect = true;
   EXPECT_TRUE(cheap_differs(s));
   s.split = {1};
-  s.reuse = 1;
   EXPECT_FALSE(cheap_differs(s));
 }
 

@@ -196,7 +196,7 @@ namespace {
 const std::map<std::string, std::string> kOtherValues = {
     {"spp", "7"},        {"max_depth", "3"},     {"seed", "12345"},
     {"target_spp", "99"}, {"accel", "bbox"},     {"sampler", "independent"},
-    {"split", "2,3"},    {"split_weights", "0.5,0.25,1"}, {"reuse", "3"}};
+    {"split", "2,3"},    {"split_weights", "0.5,0.25,1"}};
 
 std::string other_value(const SettingField& f, const RenderSettings& defaults) {
   if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member))

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -42,6 +43,11 @@ struct CameraFrame {
         focal(float(c.width) / (2.0f * std::tan(glm::radians(c.fov_deg) * 0.5f))) {
     right = camera_right(c, forward);
     up = glm::cross(right, forward);
+  }
+
+  // Pixel (row i, column j)'s place in the film and the sampler's pixel number.
+  std::uint32_t pixel_index(int i, int j) const {
+    return std::uint32_t(i) * std::uint32_t(width) + std::uint32_t(j);
   }
 
   // The direction through the centre of pixel (row i from the top, column

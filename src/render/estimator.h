@@ -1,7 +1,6 @@
 // The render side's one entry to the estimator: a tile of a pass, rendered
-// into the film by per-pixel paths (integrator.h) or, with path reuse, by
-// blocks of pixels sharing their bounces (path_reuse.h). The renderer
-// (progressive.h) knows tiles, passes and the film, not which estimator.
+// into the film by per-pixel paths (integrator.h). The renderer
+// (progressive.h) knows tiles, passes and the film, not the paths.
 #pragma once
 
 #include <cstdint>
@@ -11,7 +10,6 @@
 #include "render/film.h"
 #include "render/integrator.h"
 #include "render/light_cache.h"
-#include "render/path_reuse.h"
 
 namespace whisker {
 
@@ -21,15 +19,20 @@ namespace whisker {
 bool deterministic_estimate(const Scene& scene);
 
 // The cheap estimator, for the first moments after an edit: the same paths
-// at one sample per pass, one path per sample (no splitting, no reuse), with
+// at one sample per pass, one path per sample (no splitting), with
 // its own seed so its samples are independent of the settings' own.
 RenderSettings cheap_settings(const RenderSettings& s);
 // Whether the cheap estimator differs from the settings' own.
 bool cheap_differs(const RenderSettings& s);
 
+// A block of pixels: rows [i0, i1), columns [j0, j1).
+struct PixelBlock {
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
 // A tile's pixels and the pass's samples of each: numbers first_sample to
-// first_sample + spp - 1. `abandon`, asked before every sample of a block
-// (every kLanes paths where paths run side by side), says the pass is being
+// first_sample + spp - 1. `abandon`, asked before every group of kLanes
+// paths, says the pass is being
 // dropped (a stop or an edit): a tile of a pass of 65536 samples takes
 // minutes, and a stop must not wait for it.
 struct TileWork {
@@ -55,9 +58,7 @@ struct TileResult {
   bool abandoned = false;     // stopped early: the film holds part of the tile
 };
 
-// Adds the tile's samples to the film. With path reuse the blocks start at
-// the tile's corner (tiles never split a block, so an image is the same
-// whatever the thread count).
+// Adds the tile's samples to the film.
 TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
                        Film& film);
 

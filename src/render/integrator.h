@@ -68,8 +68,7 @@ struct PathState {
 // sampler is made, whichever estimator draws from it.
 inline Sampler pixel_sampler(const RenderSettings& s, const CameraFrame& cam, Pixel px,
                              std::uint64_t sample) {
-  const std::uint32_t pixel = std::uint32_t(px.i) * std::uint32_t(cam.width) + std::uint32_t(px.j);
-  return Sampler(s.sampler, pixel, sample, s.seed);
+  return Sampler(s.sampler, cam.pixel_index(px.i, px.j), sample, s.seed);
 }
 
 // One sample of pixel px: the camera ray (with the AA jitter, camera.h) and
@@ -77,7 +76,7 @@ inline Sampler pixel_sampler(const RenderSettings& s, const CameraFrame& cam, Pi
 // settings.max_depth hits after the first.
 vec3 sample_pixel(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);
 
-// ---- the path loop's parts, shared with path reuse (path_reuse.h) --------
+// ---- the path loop's parts ------------------------------------------------
 
 // Pixel px's camera ray in render space, jittered when AA is on.
 Ray camera_ray(const PathContext& ctx, const CameraFrame& cam, Pixel px, Sampler& sampler);

@@ -40,9 +40,6 @@ const SettingField kFields[] = {
     {"split_weights", "--split-weights", &R::split_weights,
      "Per channel r,g,b: paths that carry only low-weight channels split less", 0.01, 1.0, 0,
      "0.5,0.25,1"},
-    {"reuse", "--reuse", &R::reuse,
-     "Path reuse: the pixels of each NxN block share their indirect paths (1 = off, the report's)",
-     1, kMaxReuse},
     {"connect", "--connect", &R::connect,
      "Light connections: each diffuse bounce also reaches a point the light shines on, one of the "
      "sample's shared light paths (MIS; on in the cat scene)", 0, 0,

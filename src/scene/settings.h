@@ -25,10 +25,6 @@ using glm::vec3;
 enum class SamplerKind : std::uint8_t { Independent, Sobol };
 
 
-// The largest path-reuse block side (RenderSettings::reuse): the estimator's
-// per-block arrays are sized by it.
-inline constexpr int kMaxReuse = 8;
-
 struct RenderSettings {
   int spp = 1;            // samples per pixel per pass
   int max_depth = 5;      // bounces after the camera hit (report: getColor(ray, 5))
@@ -51,10 +47,6 @@ struct RenderSettings {
   // channel holds most of it). Each path's count depends only on its own
   // past, so the estimate stays unbiased. All 1: plain `split`.
   vec3 split_weights{1.0f};
-  // Path reuse (render/path_reuse.h): the pixels of each reuse x reuse block
-  // share their indirect paths, each weighted for every pixel so that its
-  // estimate stays unbiased; 1 = each pixel its own paths (the report's).
-  int reuse = 1;  // 1 to kMaxReuse
   // Light connections (render/light_connect.h): at each diffuse vertex that
   // bounces, one more path, from the light to a surface point it shines on
   // (one of the sample's light cache, render/light_cache.h) and from there

@@ -22,7 +22,7 @@ namespace whisker {
 inline constexpr double kDropQuickRatio = 16.0;
 
 // The weight of one sample of the settings' own estimator against one quick
-// sample (one path, no splitting, no reuse): its paths per sample, a fixed
+// sample (one path, no splitting): its paths per sample, a fixed
 // guess at how much less it varies.
 double own_sample_weight(const RenderSettings& s);
 

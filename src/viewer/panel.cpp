@@ -52,14 +52,11 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
   return changed;
 }
 
-// A checkbox per boolean setting of the table, its help as the tooltip;
-// light connections sit beside path reuse (reuse_slider), the other knob of
-// the indirect estimator.
+// A checkbox per boolean setting of the table, its help as the tooltip.
 static void setting_checkboxes(RenderSettings& r) {
   int boxes = 0;
   for (const SettingField& f : setting_fields()) {
-    if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member);
-        m && *m != &RenderSettings::connect) {
+    if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
       if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
       ImGui::Checkbox(f.label ? f.label : f.key, &(r.*(*m)));
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
@@ -226,26 +223,6 @@ static void glass_toggle(ViewerState& s) {
   }
 }
 
-// Path reuse (render/path_reuse.h): the block side; and on the same line
-// light connections (render/light_connect.h).
-static void reuse_slider(RenderSettings& r) {
-  // Both act on the bounces of diffuse hits, which only indirect light sends.
-  ImGui::BeginDisabled(!r.indirect);
-  const SettingField& f = setting_field("reuse");
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.4f);
-  ImGui::SliderInt("path reuse", &r.reuse, int(f.lo), int(f.hi), r.reuse == 1 ? "1 (off)" : "%d");
-  tip(r.indirect ? "Path reuse: the pixels of each N x N block share their indirect "
-                   "paths, each weighted so that every pixel stays unbiased. It moves "
-                   "error into N x N blotches rather than removing it; 1: each pixel its "
-                   "own paths (the report's)."
-                 : "Off because indirect light is off: only indirect paths are shared.");
-  ImGui::SameLine();
-  ImGui::Checkbox("light paths", &r.connect);
-  tip(r.indirect ? setting_field("connect").help
-                 : "Off because indirect light is off: light paths join diffuse bounces.");
-  ImGui::EndDisabled();
-}
-
 static void sampling_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings& r = s.edited.settings;
@@ -256,7 +233,6 @@ static void sampling_section(ViewerState& s, PanelRequests& req) {
   tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
       "Enter; raising it, or +, carries on from the current image.");
   threads_slider(s, req);
-  reuse_slider(r);
 }
 
 static void bookmarks(const ViewerState& s, PanelRequests& req) {

@@ -46,7 +46,7 @@ with tempfile.TemporaryDirectory() as out:
     with open(f"{out}/times.txt", "w") as f:
         f.write("report 16 101 8.0\nreport 16 202 8.0\nreport 2 101 1.0\nreport 2 202 1.0\n")
         f.write("defaults 16 101 4.1\ndefaults 16 202 4.1\ndefaults 64 101 16.1\ndefaults 64 202 16.1\n")
-    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)
+    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1)
     print(text)
     check(code == 0, "main mode exits 0")
     check("1024 spp take 512.0 s" in text, "the report program's time for 1024 spp")
@@ -58,13 +58,22 @@ with tempfile.TemporaryDirectory() as out:
     # A second pair of the report's seeds: the target is the mean of the
     # pairs' (0.0064 and 0.0032 at 16 px: 0.0048 x 16 / 1024 = 7.5e-5).
     compare_json(f"{out}/report-16-p2.json", {1: 0.064, 16: 0.0032})
-    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)
+    code, text = run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1)
     c2 = json.load(open(f"{out}/check.json"))
     check(code == 0 and "(2 pair(s) of seeds)" in text, "two pairs of the report's seeds")
     check(abs(c2["target"]["16"] - 7.5e-5) < 1e-12 and abs(c2["target"]["1"] - 0.001) < 1e-12,
           "two pairs: the target is the mean of the pairs'")
     os.remove(f"{out}/report-16-p2.json")
-    run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1, 0)  # check.json as before
+    # A second estimator that reaches the target sooner at 16 px (MSE half
+    # the defaults' there at the same times): the defaults lose, exit 1.
+    compare_json(f"{out}/other-16.json", {1: 0.002, 16: 0.0001})
+    compare_json(f"{out}/other-64.json", {1: 0.0005, 16: 0.000025})
+    with open(f"{out}/times.txt", "a") as f:
+        f.write("other 16 101 4.1\nother 16 202 4.1\nother 64 101 16.1\nother 64 202 16.1\n")
+    code, text = run(out, f"{out}/times.txt", "defaults||16 64;other|--x|16 64", "1 16", 16, 2, 0, 0.1)
+    check(code == 1 and "FAIL: the defaults reach the target later than other at 16 px" in text,
+          "the defaults losing to another estimator at one scale fail the bench")
+    run(out, f"{out}/times.txt", "defaults||16 64", "1 16", 16, 2, 0, 0.1)  # check.json as before
 
     # The check render at 32 spp misses the target at 16 px by 10 %: not
     # reached; the next count is 32 x 1.1^(1/1.2), rounded up: 35.

@@ -4,7 +4,7 @@
 find_package(Python3 COMPONENTS Interpreter REQUIRED)
 set(WHISKER_HARD_CASES offset scale small-far thin-shell tiny-ball light-on-surface light-exactly-on-surface far-obj
     intensity denormals closed-mesh degenerate-mesh extreme-glass huge-mesh glass-far
-    subdivided-cat light-in-cage noise-free-error vertex-normals reuse-scale)
+    subdivided-cat light-in-cage noise-free-error vertex-normals)
 foreach(c IN LISTS WHISKER_HARD_CASES)
   add_test(NAME HardCase.${c}
     COMMAND Python3::Interpreter ${CMAKE_CURRENT_SOURCE_DIR}/hard_cases/hard_cases.py

@@ -1024,29 +1024,6 @@ def case_vertex_normals(run):
                f"{n} of 4096 pixels differ from unit normals, nan_count {st['nan_count']}")
 
 
-def case_reuse_scale(run):
-    """Path reuse (--reuse 4, on the cat and the glass room) at every
-    scale: each pixel shares its bounces with its block, and the visibility
-    segments between pixels end on the walls, whose float roots near the end
-    moved with the scale (403 of 4096 pixels of the cat at 1e-5) until a
-    segment stopped testing the sphere it ends on. Scaled by k (and moved by
-    1e6 k), the image must stay the same but for a few pixels; the glass room
-    may move the blocks of the image's top corners, where two walls meet."""
-    for name, allowed in (("cat", 8), ("indirect", 32)):
-        base = load_scene(name)
-        base["settings"]["reuse"] = 4  # an option, off by default
-        ref, _ = run.render(base, spp=4)
-        for k in (1e-5, 1e-3, 1e4):
-            s = scaled(base, k)
-            if k < 1:
-                s = translated(s, (1e6 * k, -1e6 * k, 1e6 * k))
-            img, _ = run.render(s, spp=4)
-            n = differing_pixels(img, ref)
-            mr, mi = image_mean(ref), image_mean(img)
-            yield (f"{name} with path reuse scaled by {k:g}", n <= allowed and abs(mi - mr) <= 1e-3 * mr,
-                   f"{n} of 4096 pixels differ (allowed {allowed}); mean {mi:.6g} against {mr:.6g}")
-
-
 CASES = {
     "offset": case_offset,
     "scale": case_scale,
@@ -1067,7 +1044,6 @@ CASES = {
     "noise-free-error": case_noise_free_error,
     "subdivided-cat": case_subdivided_cat,
     "vertex-normals": case_vertex_normals,
-    "reuse-scale": case_reuse_scale,
 }
 
 
