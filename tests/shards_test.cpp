@@ -39,7 +39,7 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 // The indirect room at 96x96 with Fresnel glass and anti-aliasing on, so the
 // shards go through pixel jitter, splitting (4,4 branches per sample, whose
 // Sobol indices are i*K+k of the global sample index i), the Fresnel choice
-// and path reuse (the scene file's 4 x 4 blocks, which tiles never split).
+// and light connections (each pass's shared light paths, read sample-major).
 class Shards : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -53,7 +53,7 @@ class Shards : public ::testing::Test {
     j["camera"]["height"] = 96;
     j["settings"]["fresnel"] = true;
     j["settings"]["aa"] = true;
-    j["settings"]["reuse"] = 4;
+    j["settings"]["connect"] = true;
     scene = dir / "room.json";
     std::ofstream(scene) << j.dump(2);
   }

@@ -31,7 +31,7 @@ INNER
 # Where the fields are in the 912x800 window (image 512 wide, panel right).
 cat >"$dir/layout.sh" <<'INNER'
 PATH_X=640 PATH_Y=405
-TARGET_X=620 TARGET_Y=658
+TARGET_X=620 TARGET_Y=681
 INNER
 
 in_xvfb
