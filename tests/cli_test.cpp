@@ -280,3 +280,114 @@ TEST_F(CommandLineE2E, NoDisplayHintIsACommandThatWorks) {
   EXPECT_EQ(slurp(f("hint.png")).substr(1, 3), "PNG");
 }
 #endif
+
+TEST_F(CommandLineE2E, ObjFileFitsTheFacesNotAStrayVertex) {
+  // A valid OBJ with one vertex no face uses, far off (1e30: the fit of the
+  // whole box left the triangle no area and aborted with exit 134; 1e7: it
+  // shrank the triangle out of sight): fitted as the triangle alone.
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  std::ofstream(f("tri.obj")) << tri << "f 1 2 3\n";
+  std::ofstream(f("far30.obj")) << tri << "v 1e30 1e30 1e30\nf 1 2 3\n";
+  std::ofstream(f("far7.obj")) << tri << "v 1e7 1e7 1e7\nf 1 2 3\n";
+  // Direct light only: a quick render, the same every run.
+  const std::string quick = " --frames 1 --indirect off --connect off --aa off --quiet --out ";
+  ASSERT_EQ(run("--headless " + f("tri.obj") + quick + f("tri.png")).code, 0);
+  for (const std::string name : {"far30", "far7"}) {
+    const Outcome r = run("--headless " + f(name + ".obj") + quick + f(name + ".png"));
+    ASSERT_EQ(r.code, 0) << name << ": " << r.err;
+    EXPECT_EQ(slurp(f(name + ".png")), slurp(f("tri.png"))) << name << " is not the triangle fitted";
+  }
+  // The viewer's path (the desktop entry's `whisker FILE`) loads the same
+  // way: without a display it gets as far as the window (exit 3).
+  const Outcome v = run(f("far30.obj"), "env -u DISPLAY -u WAYLAND_DISPLAY");
+  EXPECT_EQ(v.code, 3) << v.err;
+  // Nothing with an area: one line naming the file, exit 2, never an abort.
+  std::ofstream(f("line.obj")) << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  for (const std::string& args : {"--headless " + f("line.obj") + quick + f("l.png"), f("line.obj")}) {
+    const Outcome r = run(args, "env -u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(r.err, "whisker: " + f("line.obj") + ": no triangles with non-zero area\n") << args;
+  }
+}
+
+TEST_F(CommandLineE2E, MeshPathsAreNamedAsGiven) {
+  // FILE is named alone (no --mesh was typed), --mesh PATH with the option;
+  // a folder is there, so "not a regular file", not "no such file".
+  fs::create_directories(f("dir.obj"));
+  const std::string out = " --out " + f("x.png");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--headless " + f("dir.obj") + out, f("dir.obj") + ": not a regular file (a folder)"},
+      {f("dir.obj"), f("dir.obj") + ": not a regular file (a folder)"},
+      {"--headless " + f("none.obj") + out, f("none.obj") + ": no such file"},
+      {"--headless --scene cat --mesh " + f("dir.obj") + out,
+       "--mesh " + f("dir.obj") + ": not a regular file (a folder)"},
+  };
+  for (const auto& [args, expect] : cases) {
+    const Outcome r = run(args, "env -u DISPLAY -u WAYLAND_DISPLAY");
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(r.err, "whisker: " + expect + "\n") << args;
+  }
+}
+
+#ifdef WHISKER_HAVE_VIEWER
+TEST_F(CommandLineE2E, NoDisplayHintKeepsTheMesh) {
+  // `whisker FILE.obj` without a display: the command suggested shows the
+  // same mesh (FILE, quoted for the shell), not the bare cat scene.
+  std::ofstream(f("my tri.obj")) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string nodisplay = "env -u DISPLAY -u WAYLAND_DISPLAY";
+  const Outcome r = run("'" + f("my tri.obj") + "'", nodisplay);
+  ASSERT_EQ(r.code, 3) << r.err;
+  EXPECT_NE(r.err.find("\n  whisker --headless '" + f("my tri.obj") +
+                       "' --target-spp 32 --out image.png\n"),
+            std::string::npos)
+      << r.err;
+  // --scene S --mesh M: both, and the command renders that scene and mesh.
+  std::ofstream(f("meshy.json"))
+      << R"({"name": "meshy", "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "width": 8, "height": 8},
+ "light": {"position": [0, 0, 10]}, "settings": {"target_spp": 1},
+ "meshes": [{"path": "nowhere.obj"}]})";
+  const Outcome m = run("--scene " + f("meshy.json") + " --mesh '" + f("my tri.obj") + "'", nodisplay);
+  ASSERT_EQ(m.code, 3) << m.err;
+  const std::string head = "\n  whisker ";
+  const std::size_t at = m.err.find(head);
+  ASSERT_NE(at, std::string::npos) << m.err;
+  std::string args = m.err.substr(at + head.size());
+  args = args.substr(0, args.find('\n'));
+  EXPECT_EQ(args, "--headless --scene " + f("meshy.json") + " --mesh '" + f("my tri.obj") +
+                      "' --target-spp 32 --out image.png");
+  args.replace(args.find("image.png"), 9, f("hint.png"));
+  const Outcome h = run(args + " --quiet");
+  EXPECT_EQ(h.code, 0) << args << "\n" << h.err;
+  EXPECT_EQ(slurp(f("hint.png")).substr(1, 3), "PNG");
+}
+#endif
+
+TEST_F(CommandLineE2E, OutputFolderProblemsKeepTheirReason) {
+  const std::string small = "--headless --quiet --frames 1 --scene " + scene(8, 8, 1, 1) + " --out ";
+  // A file where the folder should be: not a folder, not "does not exist".
+  std::ofstream(f("afile")) << "x";
+  for (const std::string& out : {f("afile/x.png"), f("afile/sub/x.png")}) {
+    const Outcome r = run(small + out);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err, "whisker: --out " + out + ": " + f("afile") + " is not a folder\n");
+  }
+  // Paths over PATH_MAX (4096 bytes): one line, the path shortened in its
+  // middle, and the reason kept. One whose folder is missing; one whose
+  // folder exists (just under PATH_MAX) and whose name takes it over.
+  std::string deep = dir_.string();
+  while (deep.size() + 201 < 4096) deep += "/" + std::string(200, 'd');
+  fs::create_directories(deep);
+  const std::string missing = deep + "/" + std::string(200, 'm') + "/" + std::string(200, 'n') + "/x.png";
+  const std::string over = deep + "/" + std::string(250, 'n') + ".png";
+  for (const std::string& out : {missing, over}) {
+    ASSERT_GT(out.size(), 4096u);
+    const Outcome r = run(small + out);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("whisker: --out " + out.substr(0, 100) + "...", 0), 0u) << r.err;
+    EXPECT_LT(r.err.size(), 1000u) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    const std::string reason = "File name too long\n";
+    ASSERT_GE(r.err.size(), reason.size());
+    EXPECT_EQ(r.err.substr(r.err.size() - reason.size()), reason) << r.err;
+  }
+}

@@ -8,6 +8,8 @@
 #include <string>
 #include <algorithm>
 
+#include <glm/common.hpp>
+
 #include "scene/mesh_io.h"
 
 namespace whisker {
@@ -185,6 +187,48 @@ TEST_F(MeshIo, BinaryFileNamedObj) {
 TEST_F(MeshIo, AllTrianglesDegenerate) {
   EXPECT_EQ(error_of("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"),
             (dir_ / "bad.obj").string() + ": no triangles with non-zero area");
+}
+
+TEST_F(MeshIo, FitUsesOnlyTheVerticesOfFacesWithAnArea) {
+  // One triangle, and far off a vertex no face uses or a face with no area:
+  // the fit is the triangle's alone, filling the box (28 tall, it limits).
+  const glm::dvec3 size(40.0, 28.0, 40.0), base(0.0, -10.0, 0.0);
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  // (-3e38 x 28 is no float: a vertex no face uses is not kept.)
+  for (const std::string& extra :
+       {"v 1e30 1e30 1e30\nf 1 2 3\n", "v 1e7 1e7 1e7\nf 1 2 3\n", "v -3e38 0 0\nf 1 2 3\n",
+        "v 1e7 0 0\nf 1 2 3\nf 4 4 1\n", "f 1 2 3\n"}) {
+    const ObjFile obj = read_obj(write("far.obj", tri + extra));
+    const ObjPlacement fit = fit_obj(obj, size, base);
+    EXPECT_EQ(fit.scale, 28.0f) << extra;
+    const TriangleMesh m = place_obj(obj, fit.scale, fit.translate);
+    EXPECT_EQ(m.positions.size(), extra.find("f 4") != std::string::npos ? 4u : 3u) << extra;
+    ASSERT_EQ(m.triangles.size(), 1u) << extra;
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const glm::uvec3& t : m.triangles)
+      for (int k = 0; k < 3; ++k) {
+        lo = glm::min(lo, m.exact[t[k]]);
+        hi = glm::max(hi, m.exact[t[k]]);
+      }
+    // Centred at x = z = 0, resting on y = -10.
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(lo[a], glm::dvec3(-14.0, -10.0, 0.0)[a], 1e-12) << extra << " axis " << a;
+      EXPECT_NEAR(hi[a], glm::dvec3(14.0, 18.0, 0.0)[a], 1e-12) << extra << " axis " << a;
+    }
+  }
+  // A wide, flat mesh is limited by its width instead; its height is 0.
+  const ObjFile flat = read_obj(write("flat.obj", "v 0 5 0\nv 8 5 0\nv 0 5 2\nf 1 2 3\n"));
+  const ObjPlacement f = fit_obj(flat, size, base);
+  EXPECT_EQ(f.scale, 5.0f);
+  EXPECT_EQ(place_obj(flat, f.scale, f.translate).exact[1], glm::dvec3(20.0, -10.0, -5.0));
+  // Nothing with an area: nothing to fit, said as place_obj says it.
+  const std::string bad = write("line.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  try {
+    fit_obj(read_obj(bad), size, base);
+    FAIL() << "fitted a mesh without an area";
+  } catch (const MeshError& e) {
+    EXPECT_EQ(std::string(e.what()), bad + ": no triangles with non-zero area");
+  }
 }
 
 }  // namespace

@@ -1,9 +1,7 @@
 #include "app/open_file.h"
 
-#include <algorithm>
+#include <filesystem>
 #include <memory>
-
-#include <glm/common.hpp>
 
 #include "scene/mesh_io.h"
 #include "scene/quote.h"
@@ -31,27 +29,32 @@ std::string apply_file_argument(CommandLine& o, bool given, bool scene_given) {
   return {};
 }
 
-void fit_in_cat_room(Scene& scene) {
-  const dvec3 room(40.0, 28.0, 40.0);  // about the cat's box (39 x 27 x 10)
-  const double floor_y = -10.0;
+std::string check_mesh_file(const CommandLine& o, bool from_file) {
+  if (o.mesh.empty()) return {};
+  // Named as the user gave it: FILE alone, or the option.
+  const std::string name = (from_file ? "" : "--mesh ") + cut_for_message(o.mesh);
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(o.mesh, ec);
+  if (std::filesystem::is_regular_file(st)) return {};
+  if (st.type() == std::filesystem::file_type::not_found) return name + ": no such file";
+  if (ec) return name + ": " + ec.message();  // a symbolic link loop, a name too long
+  return name + ": not a regular file" + (std::filesystem::is_directory(st) ? " (a folder)" : "");
+}
+
+void fit_in_cat_room(Scene& scene, const std::string& path) {
+  const glm::dvec3 room(40.0, 28.0, 40.0);  // about the cat's box (39 x 27 x 10)
+  const glm::dvec3 floor(0.0, -10.0, 0.0);
+  const ObjFile obj = read_obj(path);
+  const ObjPlacement fit = fit_obj(obj, room, floor);
+  const auto mesh = std::make_shared<const TriangleMesh>(place_obj(obj, fit.scale, fit.translate));
+  // As --mesh would name it (scene_io.h: load_scene).
+  const std::filesystem::path file = std::filesystem::absolute(path);
   for (MeshObject& m : scene.meshes) {
-    if (!m.mesh || m.mesh->positions.empty() || m.scale == 0.0f) continue;
-    // The file's own coordinates: undo the scale and translation it was loaded with.
-    dvec3 lo(1e300), hi(-1e300);
-    for (const vec3& p : m.mesh->positions) {
-      const dvec3 q = (dvec3(p) - m.translate) / double(m.scale);
-      lo = glm::min(lo, q);
-      hi = glm::max(hi, q);
-    }
-    const dvec3 size = hi - lo;
-    double s = 1e30;
-    for (int a = 0; a < 3; ++a)
-      if (size[a] > 0.0) s = std::min(s, room[a] / size[a]);
-    if (s == 1e30) continue;  // a single point: nothing to fit
-    const dvec3 base(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z));
-    m.scale = float(s);
-    m.translate = dvec3(0.0, floor_y, 0.0) - s * base;
-    m.mesh = std::make_shared<const TriangleMesh>(load_obj(m.path, m.scale, m.translate));
+    m.path = file.string();
+    m.file = file.lexically_normal().string();
+    m.scale = fit.scale;
+    m.translate = fit.translate;
+    m.mesh = mesh;
   }
 }
 

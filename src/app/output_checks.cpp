@@ -1,6 +1,8 @@
 // The command line's outputs checked before a render starts: folders that
 // exist and are writable, nothing special replaced, no output over an input
 // or over another output (cli.h: check_outputs).
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -20,19 +22,20 @@ namespace {
 
 // An output path is usable if its folder exists and is writable, and the
 // path names a regular file or nothing.
+// Paths are shown shortened in the middle (path_for_message): a message
+// over a path of PATH_MAX bytes still ends in its reason.
 std::string check_output(const std::string& path, const char* option) {
   if (path.empty()) return {};
   const fs::path p(path);
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    return std::string(option) + " " + path + ": folder " + dir.string() + " does not exist";
+  const std::string named = std::string(option) + " " + path_for_message(path) + ": ";
+  if (const std::string why = folder_problem(dir.string()); !why.empty()) return named + why;
   // Never replace a directory, FIFO, device node or socket (nor what a
   // symbolic link points to) by a regular file.
-  if (const std::string why = not_replaceable(path); !why.empty())
-    return std::string(option) + " " + path + ": " + why;
+  if (const std::string why = not_replaceable(path); !why.empty()) return named + why;
   if (::access(dir.c_str(), W_OK) != 0)
-    return std::string(option) + " " + path + ": folder " + dir.string() + " is not writable";
+    return named + "folder " + path_for_message(dir.string()) +
+           (errno == EACCES || errno == EROFS ? " is not writable" : ": " + std::string(std::strerror(errno)));
   return {};
 }
 

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "io/image_error.h"
+#include "scene/quote.h"
 
 namespace whisker {
 
@@ -64,7 +65,22 @@ class ListedTemp {
 };
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
-  throw ImageError(path + ": cannot write: " + why);
+  throw ImageError(path_for_message(path) + ": cannot write: " + why);
+}
+
+// The first `n` bytes of `s`, or fewer so as not to split a UTF-8 character
+// (at_end: the last ones).
+std::string_view utf8_part(std::string_view s, std::size_t n, bool at_end) {
+  const auto continuation = [&s](std::size_t i) {
+    return i < s.size() && (static_cast<unsigned char>(s[i]) & 0xC0) == 0x80;
+  };
+  if (!at_end) {
+    while (n > 0 && continuation(n)) --n;
+    return s.substr(0, n);
+  }
+  std::size_t from = s.size() - n;
+  while (from < s.size() && continuation(from)) ++from;
+  return s.substr(from);
 }
 
 std::string error_text(const char* fallback) { return errno ? std::strerror(errno) : fallback; }
@@ -207,8 +223,7 @@ void commit(const std::string& path, const std::function<bool(const std::string&
             const std::function<bool(int)>& by_fd) {
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) fail(path, "folder " + dir.string() + " does not exist");
+  if (const std::string why = folder_problem(dir.string()); !why.empty()) fail(path, why);
   if (const std::string why = not_replaceable(path); !why.empty()) fail(path, why);
   TempFile tmp(dir, target.filename().string());
   if (tmp.fd() < 0) fail(path, error_text("cannot create a temporary file"));
@@ -226,6 +241,31 @@ void commit(const std::string& path, const std::function<bool(const std::string&
 }
 
 }  // namespace
+
+std::string path_for_message(std::string_view path) {
+  if (path.size() <= kQuoteMax) return printable(path);
+  const std::size_t half = kQuoteMax / 2;
+  return printable(utf8_part(path, half, false)) + "..." + printable(utf8_part(path, half, true));
+}
+
+std::string folder_problem(const std::string& dir) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (fs::is_directory(st)) return {};
+  if (st.type() != fs::file_type::not_found)
+    return fs::exists(st) ? path_for_message(dir) + " is not a folder"
+                          : "folder " + path_for_message(dir) + ": " + ec.message();
+  // Not there: a file in the way higher up ("afile/sub/x.png") says why.
+  for (fs::path up = fs::path(dir).parent_path(); !up.empty(); up = up.parent_path()) {
+    const fs::file_status s = fs::status(up, ec);
+    if (fs::exists(s)) {
+      if (!fs::is_directory(s)) return path_for_message(up.string()) + " is not a folder";
+      break;
+    }
+    if (up == up.parent_path()) break;
+  }
+  return "folder " + path_for_message(dir) + " does not exist";
+}
 
 std::string not_replaceable(const std::string& path) {
   std::error_code ec;

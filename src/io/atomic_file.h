@@ -12,6 +12,18 @@
 
 namespace whisker {
 
+// `path` as a message shows it, one line: whole if it has at most
+// kQuoteMax bytes, else its start and its end (the file's name) around
+// "...", so that the reason after it is never cut off (a path may be
+// PATH_MAX bytes long). Control characters escaped.
+std::string path_for_message(std::string_view path);
+
+// Why an output cannot go in the folder `dir` ("" if it can be looked up as
+// a folder): "folder DIR does not exist", "X is not a folder" (a file where
+// a folder of the path should be), or "folder DIR: REASON" (too long a name,
+// a symbolic link loop, a folder that cannot be searched).
+std::string folder_problem(const std::string& dir);
+
 // Why an output may not go to `path` ("" if it may): it names something
 // that is not a regular file (a directory, FIFO, device node, socket, or a
 // symbolic link to one), which the rename would replace.

@@ -8,9 +8,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string_view>
 
+#include <glm/common.hpp>
 #include <tiny_obj_loader.h>
 
 #include "scene/mesh_io.h"
@@ -170,6 +172,13 @@ double written_value(float x) {
   return std::strtod(buf, nullptr);
 }
 
+// Whether a triangle has an area: the cross product of two edges is not zero.
+bool has_area(const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2) {
+  const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
+  return e1.y * e2.z - e1.z * e2.y != 0.0 || e1.z * e2.x - e1.x * e2.z != 0.0 ||
+         e1.x * e2.y - e1.y * e2.x != 0.0;
+}
+
 // The file's bytes, without a UTF-8 byte order mark (some Windows exporters
 // write one); never empty; scanned into `s` piece by piece as they are read,
 // so that memory follows the bytes read up to the first bad line. A file
@@ -215,6 +224,34 @@ std::string read_obj_text(const std::string& path, Scan& s) {
   if (text.empty()) fail(path, 0, "file is empty");
   scan_end(s, path);
   return text;
+}
+
+// The vertices of `obj` that its faces use, in the file's order, placed
+// into `mesh` (exact and positions); `index` maps the file's vertex to its
+// place there. A vertex no face uses (a stray point far off) is neither
+// kept nor checked: placed with a fit to the faces, it may leave float.
+void place_vertices(const ObjFile& obj, float scale, const glm::dvec3& translate,
+                    TriangleMesh& mesh, std::vector<unsigned>& index) {
+  constexpr unsigned kUnused = ~0u;
+  index.assign(obj.coords.size() / 3, kUnused);
+  for (const glm::uvec3& tri : obj.triangles)
+    for (int k = 0; k < 3; ++k) index[tri[k]] = 0;
+  unsigned kept = 0;
+  for (unsigned& i : index)
+    if (i != kUnused) i = kept++;
+  mesh.positions.resize(kept);
+  mesh.exact.resize(kept);
+  const double sc = written_value(scale);
+  const glm::dvec3 tr = translate;  // double, as the scene file wrote it
+  for (std::size_t i = 0; i < index.size(); ++i) {
+    if (index[i] == kUnused) continue;
+    glm::dvec3& x = mesh.exact[index[i]];
+    for (int k = 0; k < 3; ++k) x[k] = std::fma(obj.coords[3 * i + k], sc, tr[k]);
+    const vec3 p(x);
+    mesh.positions[index[i]] = p;
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      fail(obj.path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
+  }
 }
 
 }  // namespace
@@ -288,30 +325,16 @@ TriangleMesh place_obj(const ObjFile& obj, float scale, const glm::dvec3& transl
   const std::string& path = obj.path;
   TriangleMesh mesh;
   mesh.warnings = obj.warnings;
-  const std::size_t nv = obj.coords.size() / 3;
-  mesh.positions.resize(nv);
-  mesh.exact.resize(nv);
-  const double sc = written_value(scale);
-  const glm::dvec3 tr = translate;  // double, as the scene file wrote it
-  for (std::size_t i = 0; i < nv; ++i) {
-    glm::dvec3& x = mesh.exact[i];
-    for (int k = 0; k < 3; ++k) x[k] = std::fma(obj.coords[3 * i + k], sc, tr[k]);
-    mesh.positions[i] = vec3(x);
-    if (!std::isfinite(mesh.positions[i].x) || !std::isfinite(mesh.positions[i].y) ||
-        !std::isfinite(mesh.positions[i].z))
-      fail(path, 0, "vertex " + std::to_string(i + 1) + " is not finite after scale/translate");
-  }
+  std::vector<unsigned> index;
+  place_vertices(obj, scale, translate, mesh, index);
   mesh.normals = obj.normals;
   bool all_normals = !obj.normals.empty();
   for (std::size_t t = 0; t < obj.triangles.size(); ++t) {
-    const glm::uvec3 tri = obj.triangles[t];
-    // Zero area: the cross product of two edges of the double-precision
-    // vertices (a mesh far from the origin is not flattened by float).
-    const glm::dvec3 p0(mesh.exact[tri[0]]), p1(mesh.exact[tri[1]]), p2(mesh.exact[tri[2]]);
-    const glm::dvec3 e1 = p1 - p0, e2 = p2 - p0;
-    const glm::dvec3 c(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
-                       e1.x * e2.y - e1.y * e2.x);
-    if (c.x == 0.0 && c.y == 0.0 && c.z == 0.0) {
+    const glm::uvec3 tri(index[obj.triangles[t][0]], index[obj.triangles[t][1]],
+                         index[obj.triangles[t][2]]);
+    // Of the double-precision vertices: a mesh far from the origin is not
+    // flattened by float.
+    if (!has_area(mesh.exact[tri[0]], mesh.exact[tri[1]], mesh.exact[tri[2]])) {
       ++mesh.dropped_degenerate;
       continue;
     }
@@ -330,6 +353,34 @@ TriangleMesh place_obj(const ObjFile& obj, float scale, const glm::dvec3& transl
                             " zero-area triangles");
   if (mesh.triangles.empty()) fail(path, 0, "no triangles with non-zero area");
   return mesh;
+}
+
+ObjPlacement fit_obj(const ObjFile& obj, const glm::dvec3& size, const glm::dvec3& base) {
+  const auto vertex = [&obj](unsigned i) {
+    return glm::dvec3(obj.coords[3 * i], obj.coords[3 * i + 1], obj.coords[3 * i + 2]);
+  };
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (const glm::uvec3& tri : obj.triangles) {
+    const glm::dvec3 p[3] = {vertex(tri[0]), vertex(tri[1]), vertex(tri[2])};
+    if (!has_area(p[0], p[1], p[2])) continue;
+    for (const glm::dvec3& q : p) {
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  }
+  if (!(lo.x <= hi.x)) fail(obj.path, 0, "no triangles with non-zero area");
+  // A face with an area spans at least two axes. The scale is kept as a
+  // float (the scene's), at most the largest one.
+  double s = HUGE_VAL;
+  for (int a = 0; a < 3; ++a)
+    if (hi[a] > lo[a]) s = std::min(s, size[a] / (hi[a] - lo[a]));
+  ObjPlacement fit;
+  fit.scale = float(std::min(s, double(std::numeric_limits<float>::max())));
+  // As place_obj applies it.
+  const double applied = written_value(fit.scale);
+  const glm::dvec3 bottom(0.5 * (lo.x + hi.x), lo.y, 0.5 * (lo.z + hi.z));
+  fit.translate = base - applied * bottom;
+  return fit;
 }
 
 TriangleMesh load_obj(const std::string& path, float scale, const glm::dvec3& translate) {

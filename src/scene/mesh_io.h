@@ -28,8 +28,22 @@ struct ObjFile {
   std::vector<std::string> warnings;
 };
 ObjFile read_obj(const std::string& path);
-// The mesh of `obj` with p' = p * scale + translate, zero-area triangles dropped.
+// The mesh of `obj` with p' = p * scale + translate, zero-area triangles
+// dropped; it holds the vertices the faces use (in the file's order), and
+// only those must stay finite.
 TriangleMesh place_obj(const ObjFile& obj, float scale, const glm::dvec3& translate);
+
+// A placement (p' = p * scale + translate) that fits `obj` in a box: the
+// largest scale at which the vertices of its faces of non-zero area span at
+// most `size` on each axis, and the translation that puts the middle of the
+// bottom (least y) of their bounding box at `base`. Vertices no such face
+// uses (a far stray point) play no part. Throws MeshError if no face has an
+// area.
+struct ObjPlacement {
+  float scale = 1.0f;
+  glm::dvec3 translate{0.0};
+};
+ObjPlacement fit_obj(const ObjFile& obj, const glm::dvec3& size, const glm::dvec3& base);
 
 // Loads an OBJ file (polygons triangulated, negative indices allowed, missing
 // material library a warning), applies p' = p * scale + translate.

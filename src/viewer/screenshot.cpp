@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/stats_io.h"
 
@@ -33,6 +34,15 @@ void write_summary(const std::string& path, const PixelRect& r, const ViewerStat
 
 bool take_screenshot(const std::string& path, const PixelRect& rect, const ViewerState& s,
                      const FrameStats& f, int fb_w, int fb_h) {
+  // A window too small for anything but the panel (a 16 x 16 screen) has no
+  // render to show: an image without one is no screenshot of it.
+  if (rect.w <= 0 || rect.h <= 0) {
+    std::fprintf(stderr,
+                 "whisker: --screenshot %s: the window (%d x %d pixels) leaves no room for the "
+                 "render beside the panel; nothing written (the screen is too small)\n",
+                 path_for_message(path).c_str(), fb_w, fb_h);
+    return false;
+  }
   try {
     write_png_rgb8(path, fb_w, fb_h, read_framebuffer(fb_w, fb_h));
     write_summary(path + ".json", rect, s, f, fb_w, fb_h);

@@ -28,7 +28,8 @@ struct FrameStats {
 
 // Reads the back buffer (fb_w x fb_h) into the PNG at `path` and its summary
 // (<path>.json: the shared stats record, the render area `rect`, the frame
-// times); false (with a message) if either cannot be written.
+// times); false (with a message) if either cannot be written, or if `rect`
+// is empty (the window has no room for the render).
 bool take_screenshot(const std::string& path, const PixelRect& rect, const ViewerState& s,
                      const FrameStats& f, int fb_w, int fb_h);
 
