@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -181,5 +182,57 @@ TEST(Headless, CommandLineOverridesTheScene) {
   const auto c = render(" --threads 1", "c.pfm");
   EXPECT_NE(a, b);
   EXPECT_EQ(a, c);
+  fs::remove_all(dir);
+}
+
+TEST(Headless, AnExactEstimateRendersOnePassWhateverItsTargetSpp) {
+  // No indirect light, no anti-aliasing, no Fresnel choice: every pass is the
+  // same image, so --target-spp 64 renders one pass (as the viewer stops
+  // after one), says so on stderr once, and records what the pass stands
+  // for; its image is that of --frames 1, bit for bit.
+  const fs::path dir = temp_dir();
+  const std::string base =
+      "--headless --quiet --scene diffuse-ball --indirect off --aa off --fresnel off --spp 1 ";
+  const fs::path one = dir / "one.pfm", asked = dir / "asked.pfm", stats = dir / "asked.json";
+  const Result r1 = run(base + "--frames 1 --out-float " + one.string());
+  ASSERT_EQ(r1.code, 0) << r1.output;
+  const Result r = run(base + "--target-spp 64 --out-float " + asked.string() + " --stats " +
+                       stats.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream sj(stats);
+  const auto j = nlohmann::json::parse(sj);
+  EXPECT_EQ(j["passes"], 1);
+  EXPECT_EQ(j["spp"], 1);
+  EXPECT_EQ(j["exact"], true);
+  EXPECT_EQ(j["stands_for_spp"], 64);
+  EXPECT_EQ(j["settings"]["target_spp"], 64);
+  const std::string said =
+      "whisker: --target-spp 64: the estimate is deterministic (no indirect light, no "
+      "anti-aliasing, no Fresnel choice), so one pass of 1 spp is exact and stands for it; "
+      "rendering that one pass\n";
+  const std::size_t at = r.output.find(said);
+  EXPECT_NE(at, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(said, at + 1), std::string::npos) << "said twice: " << r.output;
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(one), bytes(asked));
+  // An EXR records it: "whisker.exact" and the samples it stands for.
+  if (have_exr()) {
+    const fs::path exr = dir / "asked.exr";
+    ASSERT_EQ(run(base + "--target-spp 64 --out-float " + exr.string()).code, 0);
+    const std::string header = bytes(exr);
+    const std::string attr = std::string("whisker.stands_for_spp\0string\0\x02\0\0\0" "64", 36);
+    EXPECT_NE(header.find(attr), std::string::npos);
+    EXPECT_NE(header.find(std::string("whisker.exact\0string\0\x04\0\0\0" "true", 29)),
+              std::string::npos);
+  }
+  // --frames N is a count of passes: it renders them all.
+  const Result frames = run(base + "--frames 3 --out-float " + asked.string() + " --stats " +
+                            stats.string());
+  ASSERT_EQ(frames.code, 0) << frames.output;
+  std::ifstream sj3(stats);
+  EXPECT_EQ(nlohmann::json::parse(sj3)["passes"], 3);
   fs::remove_all(dir);
 }

@@ -6,6 +6,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -30,12 +31,19 @@ std::string camera_json(const Scene& scene) {
   return nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump();
 }
 
-// What the image is and how it was made, for the EXR header.
+// The samples per pixel a deterministic estimate stands for: its target
+// (one pass of it is exact), or more if more were rendered.
+std::uint64_t stands_for_spp(const Scene& scene, const Snapshot& snap) {
+  return std::max<std::uint64_t>(snap.spp, std::uint64_t(std::max(0, scene.settings.target_spp)));
+}
+
+// What the image is and how it was made, for the EXR header; a
+// deterministic estimate says so, and the samples per pixel it stands for.
 ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
                                   const Snapshot& snap) {
   char seconds[32];
   std::snprintf(seconds, sizeof seconds, "%.3f", snap.counters.seconds);
-  return {{"whisker.scene", scene.name},
+  ImageAttributes a{{"whisker.scene", scene.name},
           {"whisker.units", o.display_units
                                 ? "display: 1.0 = 255^2.2 radiance, the report's white"
                                 : "scene: radiance, light intensity applied"},
@@ -50,6 +58,37 @@ ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
                                            {"intensity", scene.light.intensity}}
                                 .dump()},
           {"whisker.settings", settings_to_json(scene.settings).dump()}};
+  if (deterministic_estimate(scene)) {
+    a.emplace_back("whisker.exact", "true");
+    a.emplace_back("whisker.stands_for_spp", std::to_string(stands_for_spp(scene, snap)));
+  }
+  return a;
+}
+
+// The outputs, in the order written.
+std::vector<std::string> output_names(const HeadlessOptions& o) {
+  std::vector<std::string> names;
+  for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.stats_json})
+    if (!out->empty()) names.push_back(printable(*out));
+  return names;
+}
+
+// What a second signal's message says (set_stop_note) once the first
+// `written` outputs are: "wrote a.png; not written: b.pfm, s.json". An
+// accumulation file kept up to date by --checkpoint keeps its last one.
+void note_written(const HeadlessOptions& o, std::size_t written) {
+  const std::vector<std::string> names = output_names(o);
+  std::string wrote, not_written;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    std::string& list = i < written ? wrote : not_written;
+    list += (list.empty() ? "" : ", ") + names[i];
+    if (i >= written && o.checkpoint >= 0 && names[i] == printable(o.out_sum))
+      list += " (its last checkpoint, if any, stays)";
+  }
+  if (wrote.empty() && not_written.empty()) return set_stop_note("nothing written");
+  set_stop_note((wrote.empty() ? "" : "wrote " + wrote) +
+                (wrote.empty() || not_written.empty() ? "" : "; ") +
+                (not_written.empty() ? "" : "not written: " + not_written));
 }
 
 // The images, the summary line and the stats of a finished render.
@@ -59,12 +98,21 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   const double pixels = double(snap.width) * snap.height;
   const double samples = pixels * double(snap.spp);
   const Image img = mean_image(snap);
-  if (!o.out_png.empty()) write_png(o.out_png, img);
-  if (!o.out_float.empty())
+  std::size_t written = 0;
+  note_written(o, written);
+  if (!o.out_png.empty()) {
+    write_png(o.out_png, img);
+    note_written(o, ++written);
+  }
+  if (!o.out_float.empty()) {
     write_float_image(o.out_float, o.display_units ? display_referred(img) : img,
                       render_attributes(o, scene, snap));
-  if (!o.out_sum.empty())
+    note_written(o, ++written);
+  }
+  if (!o.out_sum.empty()) {
     write_accumulation(o.out_sum, accumulation_of(snap, o.plan.start.first_sample, o.plan.id));
+    note_written(o, ++written);
+  }
 
   // A sample is one camera ray's estimate (with --split it continues as
   // several paths); rays/s counts every ray traced.
@@ -78,14 +126,19 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.stats_json})
     if (!out->empty()) std::printf(" -> %s", printable(*out).c_str());
   std::printf("\n");
+  std::fflush(stdout);  // the summary out when the images are, not at the exit
 
   if (!o.stats_json.empty()) {
     RenderStats st{scene.name, &snap, threads, &scene.settings, {}};
     st.extra.emplace_back("camera", RenderStats::JsonText{camera_json(scene)});
     st.extra.emplace_back("exact", RenderStats::JsonText{exact ? "true" : "false"});
+    if (exact)
+      st.extra.emplace_back("stands_for_spp",
+                            RenderStats::JsonText{std::to_string(stands_for_spp(scene, snap))});
     if (!o.out_float.empty())
       st.extra.emplace_back("float_units", std::string(o.display_units ? "display" : "scene"));
     write_stats_json(o.stats_json, st);
+    note_written(o, ++written);
   }
   return 0;
 }
@@ -184,15 +237,25 @@ class Progress {
 int run_headless(const HeadlessOptions& o) {
   Scene scene = o.scene;
   scene.name = cut_for_message(scene.name);  // as echoed in the progress, the summary, the stats
-  // A deterministic estimate is exact after one pass: more add nothing.
+  const std::uint64_t asked =
+      o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
+  scene.settings.target_spp = int(asked);
+  // A deterministic estimate is exact after one pass: more add nothing. The
+  // target stays in the settings, as what that pass stands for.
   const bool exact = o.one_pass_if_exact && deterministic_estimate(scene);
   const std::uint64_t target =
-      exact ? std::uint64_t(std::max(1, scene.settings.spp))
-      : o.plan.target ? o.plan.target : std::uint64_t(o.frames) * std::uint64_t(scene.settings.spp);
-  scene.settings.target_spp = int(target);
+      exact ? std::min(asked, std::uint64_t(std::max(1, scene.settings.spp))) : asked;
+  if (exact && o.target_spp_given && target < asked)
+    std::fprintf(stderr,
+                 "whisker: --target-spp %llu: the estimate is deterministic (no indirect light, no "
+                 "anti-aliasing, no Fresnel choice), so one pass of %llu spp is exact and stands "
+                 "for it; rendering that one pass\n",
+                 (unsigned long long)asked, (unsigned long long)target);
+  note_written(o, 0);
   if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 
   ProgressiveRenderer renderer(o.threads);
+  renderer.set_stop_when_exact(exact);
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);

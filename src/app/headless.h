@@ -24,10 +24,13 @@ struct HeadlessOptions {
   // = 0, the frames x spp samples of a render from sample 0.
   ShardPlan plan;
   std::string out_sum;  // accumulation file (.exr)
-  // No --frames, --target-spp, --samples or --resume on the command line: a
-  // scene whose estimate is deterministic (deterministic_estimate) renders
-  // one pass, whatever its file's target.
+  // No --frames, --samples or --resume on the command line: a scene whose
+  // estimate is deterministic (deterministic_estimate) renders one pass,
+  // whatever its target (--target-spp, else its file's), and records the
+  // target as what that pass stands for. --frames N renders its N passes, as
+  // the viewer's does: a pass count, as for timing, not a quality target.
   bool one_pass_if_exact = false;
+  bool target_spp_given = false;  // --target-spp: say on stderr it was cut to one pass
   double checkpoint = -1;  // seconds between --out-sum writes while rendering (< 0: off)
 };
 

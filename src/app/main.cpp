@@ -12,6 +12,7 @@
 #include "app/open_file.h"
 #include "app/shards.h"
 #include "app/signals.h"
+#include "scene/mesh_io.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
 #ifdef WHISKER_HAVE_VIEWER
@@ -38,8 +39,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.display_units = cl.float_units == "display";
   h.out_sum = cl.out_sum;
   h.checkpoint = cl.checkpoint;
-  h.one_pass_if_exact =
-      cl.frames <= 0 && !given(cl, "--target-spp") && cl.samples.empty() && cl.resume.empty();
+  h.one_pass_if_exact = cl.frames <= 0 && cl.samples.empty() && cl.resume.empty();
+  h.target_spp_given = given(cl, "--target-spp");
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   // What will not fit is refused before anything is rendered.
   const std::uint64_t bytes = render_memory(scene, !h.out_sum.empty(), bool(h.plan.start.resume));
@@ -53,6 +54,26 @@ int headless(const CommandLine& cl, const Scene& scene) {
     return usage_error("out of memory while " + doing + " or writing its outputs: needs about " +
                        std::to_string((bytes >> 20) + 1) + " MB");
   }
+}
+
+// `word` as the shell reads it back: as is if it holds only characters
+// no shell treats specially, else in single quotes (a ' as '\'').
+std::string shell_word(const std::string& word) {
+  const bool plain = !word.empty() && word.find_first_not_of(
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-+=.,:/@%") == std::string::npos;
+  if (plain) return word;
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// The scene and mesh of the command line, as arguments that render them
+// again: FILE, or --scene and --mesh.
+std::string what_to_render(const CommandLine& cl) {
+  if (!cl.file.empty()) return shell_word(cl.file);
+  std::string args = "--scene " + shell_word(cl.scene_name);
+  if (!cl.mesh.empty()) args += " --mesh " + shell_word(cl.mesh);
+  return args;
 }
 
 int viewer(const CommandLine& cl, const Scene& scene) {
@@ -88,8 +109,8 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   if (code == 3)
     std::fprintf(stderr,
                  "whisker: no display for the viewer; render without a window with\n"
-                 "  whisker --headless --scene %s --target-spp 32 --out image.png\n",
-                 cl.scene_name.c_str());
+                 "  whisker --headless %s --target-spp 32 --out image.png\n",
+                 printable(what_to_render(cl)).c_str());
   return code;
 #else
   (void)cl;
@@ -152,22 +173,31 @@ int main(int argc, char** argv) {
   // Ctrl-C writes the passes so far; the viewer: ends at once. Both handlers
   // remove the temporary files of writes in progress.
   if (const std::string why = missing_scene(cl.scene_name); !why.empty()) return usage_error(why);
-  std::error_code ec;
-  if (!cl.mesh.empty() && !std::filesystem::is_regular_file(cl.mesh, ec))
-    return usage_error("--mesh " + cl.mesh + ": no such file");
+  // FILE.obj: the cat's room, the mesh fitted in place of the cat.
+  const bool obj_file = lower_extension(cl.file) == ".obj";
+  if (const std::string why = check_mesh_file(cl, obj_file); !why.empty()) return usage_error(why);
   Scene scene;
+  std::string loading = resolve_scene(cl.scene_name).string();  // the file being read
   try {
-    scene = load_scene(resolve_scene(cl.scene_name), cl.mesh);
-    if (lower_extension(cl.file) == ".obj") fit_in_cat_room(scene);
+    scene = load_scene(loading, obj_file ? std::string() : cl.mesh);
+    if (obj_file) {
+      loading = cl.mesh;
+      fit_in_cat_room(scene, cl.mesh);
+    }
   } catch (const SceneError& e) {
     return usage_error(e.what());
+  } catch (const MeshError& e) {
+    return usage_error(e.what());  // names the file (and line)
   } catch (const std::filesystem::filesystem_error& e) {
     // A file-system error the loaders did not turn into a message of their own.
     return usage_error(cut_for_message(e.path1().string()) + ": " + e.code().message());
   } catch (const std::system_error& e) {
-    return usage_error(resolve_scene(cl.scene_name).string() + ": " + e.code().message());
+    return usage_error(cut_for_message(loading) + ": " + e.code().message());
   } catch (const std::bad_alloc&) {
-    return usage_error(resolve_scene(cl.scene_name).string() + ": out of memory while loading the scene");
+    return usage_error(cut_for_message(loading) + ": out of memory while loading it");
+  } catch (const std::exception& e) {
+    // Whatever else a library throws while loading: one line, never an abort.
+    return usage_error(cut_for_message(loading) + ": " + e.what());
   }
   // Command-line settings override the scene file's.
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);

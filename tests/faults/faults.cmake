@@ -23,3 +23,16 @@ foreach(c ${WHISKER_FAULT_CASES})
     COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/cli_faults.sh $<TARGET_FILE:whisker> ${c})
   set_tests_properties(Faults.${c} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS faults)
 endforeach()
+# Signals as job wrappers send them (tests/faults/signal_faults.sh).
+foreach(c wrapper-signal-copies-one-request under-timeout second-request-stops-at-once
+          same-signal-later-is-a-second-request)
+  add_test(NAME Faults.${c}
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/signal_faults.sh $<TARGET_FILE:whisker> ${c})
+  set_tests_properties(Faults.${c} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS faults)
+endforeach()
+# Opening a file: FILE.obj and --mesh, and a screenshot with no room (tests/faults/open_faults.sh).
+foreach(c obj-file-never-aborts screenshot-without-room)
+  add_test(NAME Faults.${c}
+    COMMAND bash ${CMAKE_CURRENT_LIST_DIR}/open_faults.sh $<TARGET_FILE:whisker> ${c})
+  set_tests_properties(Faults.${c} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 120 LABELS faults)
+endforeach()
