@@ -53,7 +53,7 @@ Accumulation part(SampleRange range, RenderCounters counters) {
   a.sum_sq = {1, 2};
   a.ranges = {range};
   a.counters = counters;
-  a.id = {"room", "0123456789abcdef", R"({"seed":1})"};
+  a.id = {"room", "0123456789abcdef", R"({"seed":1})", estimator_identity()};
   return a;
 }
 

@@ -49,16 +49,22 @@ std::string check_outs(const MergeCommandLine& o) {
   return {};
 }
 
-void write(const MergeCommandLine& o, const Accumulation& acc) {
-  const Snapshot snap = snapshot_of(acc);
-  const Image img = mean_image(snap);
+// The accumulation files first (each written a band at a time), then the
+// images and stats from the sums taken over (no copy of them).
+void write(const MergeCommandLine& o, Accumulation&& acc) {
+  for (const std::string& out : o.outs)
+    if (lower_extension(out) == ".exr") write_accumulation(out, acc);
+  const std::string scene = acc.id.scene;
+  const Snapshot snap = snapshot_of(std::move(acc));
+  Image img;
   for (const std::string& out : o.outs) {
     const auto ext = lower_extension(out);
-    if (ext == ".exr") write_accumulation(out, acc);
-    else if (ext == ".pfm") write_pfm(out, img);
+    if (ext == ".exr") continue;
+    if (img.rgb.empty()) img = mean_image(snap);
+    if (ext == ".pfm") write_pfm(out, img);
     else write_png(out, img);
   }
-  if (!o.stats_json.empty()) write_stats_json(o.stats_json, {acc.id.scene, &snap, 0, nullptr, {}});
+  if (!o.stats_json.empty()) write_stats_json(o.stats_json, {scene, &snap, 0, nullptr, {}});
 }
 
 }  // namespace
@@ -70,35 +76,29 @@ int run_merge(int argc, char** argv) {
     return usage_error("merge: no parts given; usage: whisker merge PART.exr... --out FILE");
   if (const std::string why = check_outs(o); !why.empty()) return usage_error(why);
   try {
-    // Headers first (checked against each other), then one part's sums at a
-    // time added into one sum: memory for two parts' sums whatever their
-    // number (8 parts of 4096 x 4096 held 4.7 GB at once).
-    std::vector<NamedAccumulation> parts;
-    for (const std::string& p : o.parts) parts.push_back({p, read_accumulation_header(p)});
-    std::vector<std::size_t> order;
-    Accumulation acc = plan_merge(parts, order);
-    const std::size_t pixels = std::size_t(acc.width) * std::size_t(acc.height);
-    // The sum, one part and its words as read, then the outputs' copies.
-    if (const std::string why = check_memory("merging", pixels * kMergeBytesPerPixel); !why.empty())
-      return usage_error("merge: " + why);
-    for (const std::size_t i : order) {
-      const Accumulation part = read_accumulation(parts[i].name);
-      if (identity_mismatch(part, parts[i].acc) != "" || part.ranges != parts[i].acc.ranges)
-        throw AccumulationError(parts[i].name + ": changed while the merge read it");
-      add_sums(acc, part);
-    }
+    // Headers first (checked against each other), then each part's sums a
+    // band of rows at a time into one sum: memory for one image's sums
+    // whatever the parts' number (8 parts of 4096 x 4096 held 4.7 GB at
+    // once, then 1.5 GB with a whole part at a time).
+    Accumulation acc = merge_accumulation_files(o.parts, [](const Accumulation& header) {
+      const std::size_t pixels = std::size_t(header.width) * std::size_t(header.height);
+      if (const std::string why = check_memory("merging", pixels * kMergeBytesPerPixel); !why.empty())
+        throw AccumulationError("merge: " + why);
+    });
     if (const auto gaps = missing_ranges(acc.ranges); !gaps.empty()) {
       const std::string msg = "merge: samples " + ranges_to_string(gaps) +
                               " are missing (the parts hold " + ranges_to_string(acc.ranges) + ")";
       if (!o.partial) return usage_error(msg + "; render them, or pass --partial");
       std::fprintf(stderr, "whisker: warning: %s; writing the partial merge\n", printable(msg).c_str());
     }
-    write(o, acc);
-    std::printf("%s %dx%d: merged %zu part%s, samples %s (%llu spp, %llu passes)\n",
-                printable(acc.id.scene).c_str(), acc.width, acc.height, o.parts.size(),
-                o.parts.size() == 1 ? "" : "s",
-                ranges_to_string(acc.ranges).c_str(), (unsigned long long)acc.samples(),
-                (unsigned long long)acc.counters.passes);
+    char line[256];
+    std::snprintf(line, sizeof line, "%dx%d: merged %zu part%s, samples ", acc.width, acc.height,
+                  o.parts.size(), o.parts.size() == 1 ? "" : "s");
+    const std::string summary = printable(acc.id.scene) + " " + line + ranges_to_string(acc.ranges) +
+                                " (" + std::to_string(acc.samples()) + " spp, " +
+                                std::to_string(acc.counters.passes) + " passes)";
+    write(o, std::move(acc));
+    std::printf("%s\n", summary.c_str());
     return 0;
   } catch (const std::bad_alloc&) {
     return usage_error("merge: out of memory while merging the parts");

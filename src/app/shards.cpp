@@ -51,10 +51,10 @@ std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume) {
   const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
   // The film's double sums (32), two snapshots of them (32 each), three
   // output images (12 each); with --out-sum the checkpoint's snapshot and
-  // its accumulation's copy, and the file's writer's snapshot, words and
-  // mean; with --resume the part read.
+  // its accumulation's copy (the file's writer holds a band of rows); with
+  // --resume the part read.
   std::uint64_t per_pixel = 32 + 2 * 32 + 3 * 12;
-  if (out_sum) per_pixel += 32 + 32 + 32 + 32 + 12;
+  if (out_sum) per_pixel += 32 + 32;
   if (resume) per_pixel += 32;
   std::uint64_t bytes = pixels * per_pixel;
   for (const MeshObject& m : scene.meshes)

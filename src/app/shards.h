@@ -30,9 +30,10 @@ struct ShardPlan {
 std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& plan);
 
 // Memory a render or a merge needs, checked before it starts (docs/RELIABILITY.md):
-// bytes per pixel of a merge (the sum, one part and its words as read, the
-// outputs' copies).
-constexpr std::uint64_t kMergeBytesPerPixel = 32 + 32 + 32 + 2 * 32 + 12 + 32;
+// bytes per pixel of a merge (the merged sums, the mean image, the PFM's
+// bytes or the PNG's pixels and stream; the parts are read a band of rows
+// at a time, accumulation_io.h).
+constexpr std::uint64_t kMergeBytesPerPixel = 32 + 12 + 12;
 // About how many bytes a headless render of `scene` needs: its image
 // buffers (film, published and copied snapshots, output images; more with
 // --out-sum and --resume) and its meshes with their BVH.

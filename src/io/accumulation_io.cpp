@@ -1,6 +1,6 @@
 #include "io/accumulation_io.h"
 
-#include <cerrno>
+#include <bit>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -9,9 +9,12 @@
 #include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <iterator>
+#include <memory>
 
 #include "io/atomic_file.h"
 #include "io/image_error.h"
+#include "io/part_checks.h"
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>
@@ -26,7 +29,9 @@ namespace whisker {
 
 namespace {
 
-constexpr const char* kFormat = "whisker-accumulation 1";
+// Format 2 added the estimator's identity and the checksums.
+constexpr const char* kFormat = "whisker-accumulation 2";
+constexpr const char* kOldFormat = "whisker-accumulation 1";
 
 // A double's 64 bits as two 32-bit words (EXR's UINT channels): exact by
 // construction, whatever the value.
@@ -53,150 +58,121 @@ std::string text(double v) {
   return buf;
 }
 
-// A value from a file, cut for a one-line message.
-std::string cut(const std::string& v) { return v.size() <= 40 ? v : v.substr(0, 40) + "..."; }
-
-// The largest header attribute read: the settings JSON is a few KB; OpenEXR
-// allocates whatever size an attribute claims before it reads it (a 2^31-1
-// claim took 2.1 GB before the refusal).
-constexpr std::uint32_t kMaxAttributeBytes = 1u << 20;
-
-// Walks the attributes of the EXR header (OpenEXR file layout: magic
-// 76 2f 31 01, a 4-byte version with flags, then name\0 type\0 int32 size
-// and the value, until an empty name) before OpenEXR reads it: every size
-// must fit the file and kMaxAttributeBytes. Only single-part scanline files,
-// as write_accumulation writes them.
-// The bytes of the channel list at head[at...] as OpenEXR reads it: per
-// channel its name and 16 bytes (type, pLinear, reserved, sampling), then an
-// empty name. ~0u if it does not end within `size` bytes.
-std::uint32_t channel_list_size(const std::string& head, std::size_t at, std::uint32_t size) {
-  const std::size_t end = std::min(head.size(), at + std::size_t(size));
-  std::size_t p = at;
-  while (p < end && head[p] != '\0') {
-    const std::size_t z = head.find('\0', p);
-    if (z == std::string::npos || z >= end) return ~0u;
-    p = z + 1 + 16;
-  }
-  return p < end ? std::uint32_t(p + 1 - at) : ~0u;
-}
-
-[[maybe_unused]] void check_header_sizes(const std::string& path) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw AccumulationError(path + ": cannot open: " + std::strerror(errno));
-  std::string head(64 * 1024, '\0');
-  head.resize(std::fread(head.data(), 1, head.size(), f));
-  long long file_size = -1;
-  if (std::fseek(f, 0, SEEK_END) == 0) file_size = std::ftell(f);
-  std::fclose(f);
-  const auto u32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(head[at + k]);
-    return v;
-  };
-  const auto bad = [&](const std::string& why) {
-    throw AccumulationError(path + ": not an accumulation file as whisker writes it: " + why);
-  };
-  if (head.size() < 8 || u32(0) != 20000630u) bad("no OpenEXR magic number");
-  const std::uint32_t version = u32(4);
-  // Flags: 0x200 tiled, 0x800 deep, 0x1000 multi-part (OpenEXR file layout).
-  if ((version & 0xff) != 2 || (version & (0x200 | 0x800 | 0x1000)) != 0)
-    bad("OpenEXR version 2 single-part scanline expected");
-  std::size_t at = 8;  // the next attribute's name
-  const auto name_at = [&](std::size_t& pos) {
-    const std::size_t end = head.find('\0', pos);
-    if (end == std::string::npos || end - pos > 255) bad("header attribute names cut short");
-    std::string n = head.substr(pos, end - pos);
-    pos = end + 1;
-    return n;
-  };
-  for (;;) {
-    const std::string name = name_at(at);
-    if (name.empty()) break;  // the end of the header
-    const std::string type = name_at(at);
-    if (at + 4 > head.size()) bad("header cut short");
-    const std::uint32_t size = u32(at);
-    at += 4;
-    // OpenEXR reads a typed value by its type, whatever the size says (a
-    // channel list up to its empty name, a box as 16 bytes): a size that
-    // disagrees sets it reading the rest of the header from elsewhere. Only
-    // the types a part holds, at the sizes their layout gives.
-    std::uint32_t expect = size;
-    if (type == "box2i" || type == "box2f" || type == "v2f") expect = type == "v2f" ? 8 : 16;
-    else if (type == "compression" || type == "lineOrder") expect = 1;
-    else if (type == "float") expect = 4;
-    else if (type == "chlist") expect = channel_list_size(head, at, size);
-    else if (type != "string") bad("header attribute " + cut(name) + " of type " + cut(type));
-    if (size != expect) bad("header attribute " + cut(name) + " of " + std::to_string(size) + " bytes");
-    if (size > kMaxAttributeBytes || (file_size >= 0 && at + size > std::uint64_t(file_size)))
-      throw AccumulationError(path + ": header attribute " + cut(name) + " claims " +
-                              std::to_string(size) + " bytes, in a file of " +
-                              std::to_string(file_size) + " (at most " +
-                              std::to_string(kMaxAttributeBytes) + " each); damaged?");
-    if (at + size > head.size()) bad("header longer than 64 KB");
-    at += size;
-  }
-  // The line offset table follows, up to the first chunk: a file cut short
-  // (a copy that did not finish) has offsets past its end. Told here so that
-  // a merge names it before it compares the parts' headers.
-  const auto u64 = [&](std::size_t p) { return std::uint64_t(u32(p)) | (std::uint64_t(u32(p + 4)) << 32); };
-  if (at + 8 > head.size() || file_size < 0) return;
-  const std::uint64_t first = u64(at);
-  for (std::size_t p = at; p + 8 <= head.size() && p < first; p += 8)
-    if (u64(p) >= std::uint64_t(file_size))
-      throw AccumulationError(path + ": cannot read as OpenEXR: a line offset points past the end of the file (cut short?)");
-}
-
 }  // namespace
 
 #ifdef WHISKER_HAVE_OPENEXR
 
-void write_accumulation(const std::string& path, const Accumulation& acc) {
+namespace {
+
+// The checksum covers the words as EXR stores them (little-endian); the
+// band buffers hold them in this machine's order, which is the same.
+static_assert(std::endian::native == std::endian::little, "the part checksum assumes little-endian words");
+
+// Whisker's own header attributes, in the order the header checksum covers them.
+constexpr const char* kAttributes[] = {"format", "samples",   "scene", "scene_hash", "estimator",
+                                       "settings", "passes", "nan_count", "rays", "seconds"};
+constexpr std::size_t kAttributeCount = std::size(kAttributes);
+
+std::vector<std::string> attribute_values(const Accumulation& acc) {
+  return {kFormat,
+          ranges_to_string(acc.ranges),
+          acc.id.scene,
+          acc.id.scene_hash,
+          acc.id.estimator,
+          acc.id.settings,
+          std::to_string(acc.counters.passes),
+          std::to_string(acc.counters.nan_count),
+          std::to_string(acc.counters.rays),
+          text(acc.counters.seconds)};
+}
+
+// A band of rows as stored: per pixel the 11 words of the channels in
+// kWordChannels' order (R, G, B as float bits, then each double's hi and
+// lo), row after row. The pixel checksum is the CRC-32 of the bands in turn.
+constexpr std::size_t kWords = 11;
+const char* const kWordChannels[kWords] = {"R",        "G",        "B",        "sum.R.hi",
+                                           "sum.R.lo", "sum.G.hi", "sum.G.lo", "sum.B.hi",
+                                           "sum.B.lo", "sumsq.Y.hi", "sumsq.Y.lo"};
+
+// Slices of the band of rows from y0 (in the file's coordinates) at `band`.
+Imf::FrameBuffer band_frame(std::vector<std::uint32_t>& band, const Imath::Box2i& dw, int y0) {
+  const std::size_t width = std::size_t(dw.max.x) - dw.min.x + 1;
+  const std::size_t xs = kWords * sizeof(std::uint32_t), ys = xs * width;
+  // OpenEXR addresses pixel (x, y) at base + x * xs + y * ys.
+  char* base = reinterpret_cast<char*>(band.data()) - std::ptrdiff_t(dw.min.x) * std::ptrdiff_t(xs) -
+               std::ptrdiff_t(y0) * std::ptrdiff_t(ys);
+  Imf::FrameBuffer fb;
+  for (std::size_t c = 0; c < kWords; ++c)
+    fb.insert(kWordChannels[c], Imf::Slice(c < 3 ? Imf::FLOAT : Imf::UINT,
+                                           base + c * sizeof(std::uint32_t), xs, ys));
+  return fb;
+}
+
+// The band of `rows` rows of `acc` from row y0, as write_accumulation stores it.
+void fill_band(const Accumulation& acc, int y0, int rows, std::vector<std::uint32_t>& band) {
+  // The mean as mean_image computes it.
+  const float inv = acc.samples() ? 1.0f / float(acc.samples()) : 0.0f;
+  const std::size_t first = std::size_t(y0) * acc.width, pixels = std::size_t(rows) * acc.width;
+  band.resize(pixels * kWords);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    std::uint32_t* w = &band[p * kWords];
+    for (int c = 0; c < 3; ++c) {
+      const float mean = float(acc.sum[3 * (first + p) + c]) * inv;
+      std::memcpy(&w[c], &mean, sizeof mean);
+    }
+    for (int c = 0; c < 4; ++c)
+      split_bits(c < 3 ? acc.sum[3 * (first + p) + c] : acc.sum_sq[first + p], w[3 + 2 * c], w[4 + 2 * c]);
+  }
+}
+
+std::uint32_t band_crc(std::uint32_t crc, const std::vector<std::uint32_t>& band) {
+  return crc32_of(crc, band.data(), band.size() * sizeof(band[0]));
+}
+
+// The CRC-32 of Whisker's attributes (name, NUL, value, NUL, in kAttributes'
+// order) and of the data window the pixels are read in.
+std::uint32_t header_crc(const std::vector<std::string>& values, const Imath::Box2i& dw) {
+  std::string all;
+  for (std::size_t i = 0; i < kAttributeCount; ++i)
+    ((all += "whisker.") += kAttributes[i]).append(1, '\0').append(values[i]).append(1, '\0');
+  all += "dataWindow " + std::to_string(dw.min.x) + " " + std::to_string(dw.min.y) + " " +
+         std::to_string(dw.max.x) + " " + std::to_string(dw.max.y);
+  return crc32_of(0, all.data(), all.size());
+}
+
+}  // namespace
+
+void write_accumulation(const std::string& path, const Accumulation& acc, int band_rows) {
   const std::size_t pixels = std::size_t(acc.width) * acc.height;
   if (acc.width <= 0 || acc.height <= 0 || acc.sum.size() != pixels * 3 ||
       acc.sum_sq.size() != pixels)
     throw ImageError(path + ": empty or malformed accumulation");
-  const Image mean = mean_image(snapshot_of(acc));
-  // words[c][2p] = hi, words[c][2p+1] = lo of channel c of pixel p
-  std::vector<std::uint32_t> words[4];
-  for (int c = 0; c < 4; ++c) {
-    words[c].resize(pixels * 2);
-    for (std::size_t p = 0; p < pixels; ++p)
-      split_bits(c < 3 ? acc.sum[3 * p + c] : acc.sum_sq[p], words[c][2 * p], words[c][2 * p + 1]);
+  band_rows = std::max(band_rows, 1);
+  const std::vector<std::string> values = attribute_values(acc);
+  const Imath::Box2i dw({0, 0}, {acc.width - 1, acc.height - 1});
+  // The header holds the pixels' checksum: one pass over the bands for it,
+  // one to write them (a band at a time, never a copy of the image).
+  std::vector<std::uint32_t> band;
+  std::uint32_t crc = 0;
+  for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
+    fill_band(acc, y0, std::min(band_rows, acc.height - y0), band);
+    crc = band_crc(crc, band);
   }
   write_file_atomically(path, [&](const std::string& tmp) {
     try {
       Imf::Header header(acc.width, acc.height);
-      for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-      for (const char* c : kExact)
-        for (const char* part : {".hi", ".lo"})
-          header.channels().insert(std::string(c) + part, Imf::Channel(Imf::UINT));
-      const auto attr = [&](const char* name, const std::string& value) {
-        header.insert(std::string("whisker.") + name, Imf::StringAttribute(value));
-      };
-      attr("format", kFormat);
-      attr("samples", ranges_to_string(acc.ranges));
-      attr("scene", acc.id.scene);
-      attr("scene_hash", acc.id.scene_hash);
-      attr("settings", acc.id.settings);
-      attr("passes", std::to_string(acc.counters.passes));
-      attr("nan_count", std::to_string(acc.counters.nan_count));
-      attr("rays", std::to_string(acc.counters.rays));
-      attr("seconds", text(acc.counters.seconds));
+      for (std::size_t c = 0; c < kWords; ++c)
+        header.channels().insert(kWordChannels[c], Imf::Channel(c < 3 ? Imf::FLOAT : Imf::UINT));
+      for (std::size_t i = 0; i < kAttributeCount; ++i)
+        header.insert(std::string("whisker.") + kAttributes[i], Imf::StringAttribute(values[i]));
+      header.insert("whisker.checksum", Imf::StringAttribute(checksum_text(header_crc(values, dw), crc)));
       Imf::OutputFile file(tmp.c_str(), header);
-      Imf::FrameBuffer fb;
-      char* base = reinterpret_cast<char*>(const_cast<float*>(mean.rgb.data()));
-      const std::size_t xs = 3 * sizeof(float), ys = xs * acc.width;
-      for (int c = 0; c < 3; ++c)
-        fb.insert(std::string(1, "RGB"[c]), Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys));
-      const std::size_t wx = 2 * sizeof(std::uint32_t), wy = wx * acc.width;
-      for (int c = 0; c < 4; ++c) {
-        char* w = reinterpret_cast<char*>(words[c].data());
-        fb.insert(std::string(kExact[c]) + ".hi", Imf::Slice(Imf::UINT, w, wx, wy));
-        fb.insert(std::string(kExact[c]) + ".lo",
-                  Imf::Slice(Imf::UINT, w + sizeof(std::uint32_t), wx, wy));
+      for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
+        const int rows = std::min(band_rows, acc.height - y0);
+        fill_band(acc, y0, rows, band);
+        file.setFrameBuffer(band_frame(band, dw, y0));
+        file.writePixels(rows);
       }
-      file.setFrameBuffer(fb);
-      file.writePixels(acc.height);
       return true;
     } catch (const std::exception&) {
       return false;
@@ -216,113 +192,164 @@ std::string attribute(const Imf::Header& h, const std::string& path, const char*
 
 // A count as the writer writes it: decimal digits that fit 64 bits (a
 // 23-digit count wrapped around before).
-std::uint64_t count_attribute(const Imf::Header& h, const std::string& path, const char* name) {
-  const std::string v = attribute(h, path, name);
+std::uint64_t count_attribute(const std::string& v, const std::string& path, const char* name) {
   std::uint64_t n = 0;
   const auto [end, err] = std::from_chars(v.data(), v.data() + v.size(), n);
   if (v.empty() || v[0] < '0' || v[0] > '9' || end != v.data() + v.size() || err != std::errc())
-    throw AccumulationError(path + ": whisker." + name + " \"" + cut(v) +
+    throw AccumulationError(path + ": whisker." + name + " \"" + cut_value(v) +
                             "\" is not a count (decimal digits, below 2^64)");
   return n;
 }
 
 // Render seconds: a finite number >= 0, as the writer writes it.
-double seconds_attribute(const Imf::Header& h, const std::string& path) {
-  const std::string v = attribute(h, path, "seconds");
+double seconds_attribute(const std::string& v, const std::string& path) {
   double d = 0.0;
   const auto [end, err] = std::from_chars(v.data(), v.data() + v.size(), d);
   if (v.empty() || end != v.data() + v.size() || err != std::errc() || !std::isfinite(d) || d < 0)
-    throw AccumulationError(path + ": whisker.seconds \"" + cut(v) +
+    throw AccumulationError(path + ": whisker.seconds \"" + cut_value(v) +
                             "\" is not a finite number of seconds >= 0");
   return d;
 }
 
-Accumulation read(const std::string& path, bool with_sums) {
+// A part open for reading, its header checked: Whisker's attributes against
+// the header checksum, then each field, the size and the word channels.
+class PartFile {
+ public:
+  explicit PartFile(const std::string& path);
+  // Reads the sums in bands of `band_rows` rows, then checks the pixel checksum.
+  void read_sums(int band_rows, const SumBand& band);
+
+  Accumulation acc;  // the header, sums empty
+  std::string checksum;
+
+ private:
+  void parse(const std::vector<std::string>& values);
+  void check_channels() const;
+
+  std::string path_;
+  std::unique_ptr<Imf::InputFile> file_;
+  Imath::Box2i dw_;
+  std::uint32_t pixels_crc_ = 0;
+};
+
+PartFile::PartFile(const std::string& path) : path_(path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw AccumulationError(path + ": no such file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw AccumulationError(path + ": no such file");
   check_header_sizes(path);
-  try {
-    Imf::InputFile file(path.c_str());
-    const Imf::Header& h = file.header();
-    if (attribute(h, path, "format") != kFormat)
-      throw AccumulationError(path + ": unknown accumulation format \"" +
-                              attribute(h, path, "format") + "\" (expected " + kFormat + ")");
-    Accumulation acc;
-    if (!parse_ranges(attribute(h, path, "samples"), acc.ranges))
-      throw AccumulationError(path + ": whisker.samples \"" + attribute(h, path, "samples") +
-                              "\" is not a list of sorted ranges A:B");
-    acc.id = {attribute(h, path, "scene"), attribute(h, path, "scene_hash"),
-              attribute(h, path, "settings")};
-    acc.counters.passes = count_attribute(h, path, "passes");
-    acc.counters.nan_count = count_attribute(h, path, "nan_count");
-    acc.counters.rays = count_attribute(h, path, "rays");
-    acc.counters.seconds = seconds_attribute(h, path);
-    const Imath::Box2i dw = h.dataWindow();
-    // The header's size is checked before the pixels are allocated: a 35 KB
-    // file claiming 40000 x 40000 pixels asked for 51 GB. Renders are at
-    // most 16384 pixels a side and 4096 x 4096 in all (the scene reader's limits).
-    const long long w = (long long)dw.max.x - dw.min.x + 1;
-    const long long hgt = (long long)dw.max.y - dw.min.y + 1;
-    if (w < 1 || hgt < 1 || w > 16384 || hgt > 16384 || w * hgt > 4096LL * 4096LL)
-      throw AccumulationError(path + ": header gives " + std::to_string(w) + " x " +
-                              std::to_string(hgt) +
-                              " pixels; an accumulation file is at most 4096 x 4096 (damaged?)");
-    acc.width = int(w);
-    acc.height = int(hgt);
-    // The exact channels are 32-bit words; OpenEXR would convert a FLOAT or
-    // HALF channel to UINT silently, and the doubles rebuilt from those
-    // words would be wrong.
-    for (const char* c : kExact)
-      for (const char* part : {".hi", ".lo"}) {
-        const Imf::Channel* ch = h.channels().findChannel(std::string(c) + part);
-        if (!ch) throw AccumulationError(path + ": channel " + c + part + " missing");
-        if (ch->type != Imf::UINT)
-          throw AccumulationError(path + ": channel " + c + part + " is " +
-                                  (ch->type == Imf::FLOAT ? "FLOAT" : "HALF") +
-                                  ", not UINT (the words of a double); not written by whisker");
-      }
-    // A file cut short (a copy that did not finish, a full disk): its line
-    // offsets point past its end. Told by the header pass too, before a
-    // merge checks ranges.
-    if (!file.isComplete())
-      throw AccumulationError(path + ": cannot read as OpenEXR: the file is incomplete");
-    if (!with_sums) return acc;
-    const std::size_t pixels = std::size_t(acc.width) * acc.height;
-    std::vector<std::uint32_t> words[4];
-    Imf::FrameBuffer fb;
-    const std::size_t wx = 2 * sizeof(std::uint32_t), wy = wx * acc.width;
-    const std::ptrdiff_t origin = (std::ptrdiff_t(dw.min.y) * acc.width + dw.min.x) * std::ptrdiff_t(wx);
-    for (int c = 0; c < 4; ++c) {
-      for (const char* part : {".hi", ".lo"})
-        if (!h.channels().findChannel(std::string(kExact[c]) + part))
-          throw AccumulationError(path + ": channel " + kExact[c] + part + " missing");
-      words[c].assign(pixels * 2, 0);
-      char* w = reinterpret_cast<char*>(words[c].data()) - origin;
-      fb.insert(std::string(kExact[c]) + ".hi", Imf::Slice(Imf::UINT, w, wx, wy));
-      fb.insert(std::string(kExact[c]) + ".lo", Imf::Slice(Imf::UINT, w + sizeof(std::uint32_t), wx, wy));
-    }
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
-    acc.sum.resize(pixels * 3);
-    acc.sum_sq.resize(pixels);
+  file_ = std::make_unique<Imf::InputFile>(path.c_str());
+  const Imf::Header& h = file_->header();
+  const std::string format = attribute(h, path, "format");
+  if (format == kOldFormat)
+    throw AccumulationError(path + ": written by an older whisker (" + kOldFormat +
+                            ", without checksums); render it again");
+  if (format != kFormat)
+    throw AccumulationError(path + ": unknown accumulation format \"" + cut_value(format) + "\" (expected " +
+                            kFormat + ")");
+  std::vector<std::string> values;
+  for (const char* name : kAttributes) values.push_back(attribute(h, path, name));
+  checksum = attribute(h, path, "checksum");
+  std::uint32_t header = 0;
+  if (!parse_checksum(checksum, header, pixels_crc_))
+    throw AccumulationError(path + ": whisker.checksum \"" + cut_value(checksum) +
+                            "\" is not \"crc32 header XXXXXXXX pixels XXXXXXXX\"");
+  dw_ = h.dataWindow();
+  // Each field as the writer writes it first, so that a value no writer
+  // writes is named as such (the header checksum would refuse it too).
+  parse(values);
+  if (const std::uint32_t crc = header_crc(values, dw_); crc != header)
+    throw AccumulationError(path + ": damaged: its header does not match its checksum (crc32 " +
+                            crc_text(crc) + ", whisker.checksum says " + crc_text(header) + ")");
+  check_channels();
+  // A file cut short (a copy that did not finish, a full disk): its line
+  // offsets point past its end. Told by the header pass too, before a
+  // merge checks ranges.
+  if (!file_->isComplete())
+    throw AccumulationError(path + ": cannot read as OpenEXR: the file is incomplete");
+}
+
+void PartFile::parse(const std::vector<std::string>& values) {
+  if (!parse_ranges(values[1], acc.ranges))
+    throw AccumulationError(path_ + ": whisker.samples \"" + cut_value(values[1]) +
+                            "\" is not a list of sorted ranges A:B");
+  acc.id = {.scene = values[2], .scene_hash = values[3], .settings = values[5], .estimator = values[4]};
+  acc.counters.passes = count_attribute(values[6], path_, "passes");
+  acc.counters.nan_count = count_attribute(values[7], path_, "nan_count");
+  acc.counters.rays = count_attribute(values[8], path_, "rays");
+  acc.counters.seconds = seconds_attribute(values[9], path_);
+  // The header's size is checked before the pixels are allocated: a 35 KB
+  // file claiming 40000 x 40000 pixels asked for 51 GB. Renders are at
+  // most 16384 pixels a side and 4096 x 4096 in all (the scene reader's limits).
+  const long long w = (long long)dw_.max.x - dw_.min.x + 1;
+  const long long hgt = (long long)dw_.max.y - dw_.min.y + 1;
+  if (w < 1 || hgt < 1 || w > 16384 || hgt > 16384 || w * hgt > 4096LL * 4096LL)
+    throw AccumulationError(path_ + ": header gives " + std::to_string(w) + " x " +
+                            std::to_string(hgt) +
+                            " pixels; an accumulation file is at most 4096 x 4096 (damaged?)");
+  acc.width = int(w);
+  acc.height = int(hgt);
+}
+
+void PartFile::check_channels() const {
+  // The exact channels are 32-bit words; OpenEXR would convert a FLOAT or
+  // HALF channel to UINT silently, and the doubles rebuilt from those
+  // words would be wrong. The mean channels are FLOAT, as written.
+  for (std::size_t c = 0; c < kWords; ++c) {
+    const Imf::Channel* ch = file_->header().channels().findChannel(kWordChannels[c]);
+    if (!ch) throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " missing");
+    const Imf::PixelType want = c < 3 ? Imf::FLOAT : Imf::UINT;
+    if (ch->type != want)
+      throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " is " +
+                              (ch->type == Imf::FLOAT ? "FLOAT" : ch->type == Imf::HALF ? "HALF" : "UINT") +
+                              ", not " + (c < 3 ? "FLOAT" : "UINT (the words of a double)") +
+                              "; not written by whisker");
+    if (ch->xSampling != 1 || ch->ySampling != 1)
+      throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " is subsampled; not written by whisker");
+  }
+}
+
+void PartFile::read_sums(int band_rows, const SumBand& band) {
+  band_rows = std::max(band_rows, 1);
+  std::vector<std::uint32_t> words;
+  std::vector<double> sum, sum_sq;
+  std::uint32_t crc = 0;
+  for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
+    const int rows = std::min(band_rows, acc.height - y0);
+    const std::size_t pixels = std::size_t(rows) * acc.width;
+    words.assign(pixels * kWords, 0);
+    file_->setFrameBuffer(band_frame(words, dw_, dw_.min.y + y0));
+    file_->readPixels(dw_.min.y + y0, dw_.min.y + y0 + rows - 1);
+    crc = band_crc(crc, words);
+    sum.resize(pixels * 3);
+    sum_sq.resize(pixels);
     for (std::size_t p = 0; p < pixels; ++p) {
-      for (int c = 0; c < 3; ++c) acc.sum[3 * p + c] = join_bits(words[c][2 * p], words[c][2 * p + 1]);
-      acc.sum_sq[p] = join_bits(words[3][2 * p], words[3][2 * p + 1]);
+      const std::uint32_t* w = &words[p * kWords];
+      for (int c = 0; c < 3; ++c) sum[3 * p + c] = join_bits(w[3 + 2 * c], w[4 + 2 * c]);
+      sum_sq[p] = join_bits(w[9], w[10]);
       // Sums of radiance and of squares are finite and >= 0 (the renderer
       // drops NaN and infinite samples, and counts them in nan_count): any
       // other value is damage, and would spread NaN through a merge or a resume.
       for (int c = 0; c < 4; ++c) {
-        const double v = c < 3 ? acc.sum[3 * p + c] : acc.sum_sq[p];
+        const double v = c < 3 ? sum[3 * p + c] : sum_sq[p];
         if (std::isfinite(v) && v >= 0.0) continue;
         char where[64];
         std::snprintf(where, sizeof where, " of pixel (%zu, %zu) is ", p % std::size_t(acc.width),
-                      p / std::size_t(acc.width));
-        throw AccumulationError(path + ": " + kExact[c] + where + text(v) +
+                      y0 + p / std::size_t(acc.width));
+        throw AccumulationError(path_ + ": " + kExact[c] + where + text(v) +
                                 "; a part holds finite sums >= 0 (damaged?)");
       }
     }
-    return acc;
+    band(y0, rows, sum.data(), sum_sq.data());
+  }
+  if (crc != pixels_crc_)
+    throw AccumulationError(path_ + ": damaged: its pixels do not match its checksum (crc32 " +
+                            crc_text(crc) + ", whisker.checksum says " + crc_text(pixels_crc_) + ")");
+}
+
+// Runs f, telling OpenEXR's exceptions as AccumulationError naming the path.
+template <class F>
+auto guarded(const std::string& path, F f) {
+  try {
+    return f();
   } catch (const AccumulationError&) {
     throw;
   } catch (const std::exception& e) {
@@ -332,21 +359,84 @@ Accumulation read(const std::string& path, bool with_sums) {
 
 }  // namespace
 
-Accumulation read_accumulation(const std::string& path) { return read(path, true); }
+Accumulation read_accumulation_bands(const std::string& path, int band_rows, const SumBand& band) {
+  return guarded(path, [&] {
+    PartFile part(path);
+    part.read_sums(band_rows, band);
+    return part.acc;
+  });
+}
 
-Accumulation read_accumulation_header(const std::string& path) { return read(path, false); }
+Accumulation read_accumulation(const std::string& path, int band_rows) {
+  return guarded(path, [&] {
+    PartFile part(path);
+    Accumulation& acc = part.acc;
+    acc.sum.resize(std::size_t(acc.width) * acc.height * 3);
+    acc.sum_sq.resize(std::size_t(acc.width) * acc.height);
+    part.read_sums(band_rows, [&](int y0, int rows, const double* s, const double* q) {
+      const std::size_t first = std::size_t(y0) * acc.width, pixels = std::size_t(rows) * acc.width;
+      std::copy(s, s + pixels * 3, acc.sum.begin() + first * 3);
+      std::copy(q, q + pixels, acc.sum_sq.begin() + first);
+    });
+    return std::move(acc);
+  });
+}
+
+Accumulation read_accumulation_header(const std::string& path) {
+  return guarded(path, [&] { return PartFile(path).acc; });
+}
+
+Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
+                                      const std::function<void(const Accumulation&)>& before_sums,
+                                      int band_rows) {
+  // Headers first, checked against each other; then each part's sums band
+  // by band into the merged sums, in range order (the exactness rule).
+  std::vector<NamedAccumulation> parts;
+  std::vector<std::string> checksums;
+  for (const std::string& p : paths) {
+    guarded(p, [&] {
+      PartFile part(p);
+      parts.push_back({p, std::move(part.acc)});
+      checksums.push_back(part.checksum);
+      return 0;
+    });
+  }
+  std::vector<std::size_t> order;
+  Accumulation out = plan_merge(parts, order);
+  if (before_sums) before_sums(out);
+  for (const std::size_t i : order) {
+    guarded(parts[i].name, [&] {
+      PartFile part(parts[i].name);
+      if (part.checksum != checksums[i])
+        throw AccumulationError(parts[i].name + ": changed while the merge read it");
+      part.read_sums(band_rows, [&](int y0, int rows, const double* s, const double* q) {
+        add_sums(out, std::size_t(y0) * out.width, std::size_t(rows) * out.width, s, q);
+      });
+      return 0;
+    });
+  }
+  return out;
+}
 
 #else
 
-void write_accumulation(const std::string& path, const Accumulation&) {
+void write_accumulation(const std::string& path, const Accumulation&, int) {
   throw ImageError(path + ": this build has no OpenEXR; accumulation files need it");
 }
 
-Accumulation read_accumulation(const std::string& path) {
+Accumulation read_accumulation_bands(const std::string& path, int, const SumBand&) {
   throw AccumulationError(path + ": this build has no OpenEXR; accumulation files need it");
 }
 
-Accumulation read_accumulation_header(const std::string& path) { return read_accumulation(path); }
+Accumulation read_accumulation(const std::string& path, int) { return read_accumulation_bands(path, 0, {}); }
+
+Accumulation read_accumulation_header(const std::string& path) { return read_accumulation(path, 0); }
+
+Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
+                                      const std::function<void(const Accumulation&)>&, int) {
+  if (paths.empty()) throw AccumulationError("nothing to merge");
+  return read_accumulation(paths[0], 0);
+}
 
 #endif
 

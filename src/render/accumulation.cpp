@@ -40,6 +40,10 @@ bool parse_u64(std::string_view s, std::uint64_t& out) {
   return ec == std::errc() && end == s.data() + s.size() && !s.empty();
 }
 
+std::string size_text(const Accumulation& a) {
+  return std::to_string(a.width) + "x" + std::to_string(a.height);
+}
+
 }  // namespace
 
 bool parse_sample_range(const std::string& text, SampleRange& out) {
@@ -81,8 +85,18 @@ bool parse_ranges(const std::string& text, std::vector<SampleRange>& out) {
   return true;
 }
 
+// The project version, from CMake (CMakeLists.txt, whisker_render).
+#ifndef WHISKER_PROJECT_VERSION
+#error "WHISKER_PROJECT_VERSION must be defined (the project version, from CMake)"
+#endif
+
+std::string estimator_identity() {
+  return "whisker " WHISKER_PROJECT_VERSION " estimator " + std::to_string(kEstimatorRevision);
+}
+
 RenderIdentity render_identity(const Scene& scene) {
   RenderIdentity id;
+  id.estimator = estimator_identity();
   id.scene = scene.name;
   // The scene as its file would say it (camera, light, objects), without the
   // settings, and the triangles its meshes loaded to.
@@ -137,13 +151,25 @@ Snapshot snapshot_of(const Accumulation& acc) {
   return s;
 }
 
+Snapshot snapshot_of(Accumulation&& acc) {
+  Snapshot s;
+  s.width = acc.width;
+  s.height = acc.height;
+  s.spp = acc.samples();
+  s.counters = acc.counters;
+  s.done = true;
+  s.sum = std::move(acc.sum);
+  s.sum_sq = std::move(acc.sum_sq);
+  return s;
+}
+
 std::string identity_mismatch(const Accumulation& a, const Accumulation& b) {
+  if (a.width != b.width || a.height != b.height) return "size: " + size_text(a) + " vs " + size_text(b);
   if (a.id.scene != b.id.scene) return "scene: \"" + a.id.scene + "\" vs \"" + b.id.scene + "\"";
+  if (a.id.estimator != b.id.estimator)
+    return "estimator: \"" + a.id.estimator + "\" vs \"" + b.id.estimator + "\" (another build)";
   if (a.id.scene_hash != b.id.scene_hash)
     return "scene file or meshes (hash " + a.id.scene_hash + " vs " + b.id.scene_hash + ")";
-  if (a.width != b.width || a.height != b.height)
-    return "size: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
-           std::to_string(b.width) + "x" + std::to_string(b.height);
   if (a.id.settings == b.id.settings) return {};
   // Name the first setting that differs.
   const json sa = json::parse(a.id.settings, nullptr, false);
@@ -158,9 +184,15 @@ std::string identity_mismatch(const Accumulation& a, const Accumulation& b) {
 
 Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order) {
   if (parts.empty()) throw AccumulationError("nothing to merge");
-  for (std::size_t i = 1; i < parts.size(); ++i)
+  for (std::size_t i = 1; i < parts.size(); ++i) {
+    const Accumulation &a = parts[0].acc, &b = parts[i].acc;
+    if (a.width != b.width || a.height != b.height)
+      throw AccumulationError("part " + parts[i].name + " is " + size_text(b) + ", part " +
+                              parts[0].name + " is " + size_text(a) +
+                              " (the parts of one render have its size)");
     if (const std::string why = identity_mismatch(parts[0].acc, parts[i].acc); !why.empty())
       throw AccumulationError(parts[0].name + " and " + parts[i].name + " differ in " + why);
+  }
   // Every range with its file, in sample order; neighbours must not overlap.
   struct Owned {
     SampleRange r;
@@ -198,16 +230,26 @@ Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector
   return out;
 }
 
+void add_sums(Accumulation& into, std::size_t first, std::size_t pixels, const double* sum,
+              const double* sum_sq) {
+  const std::size_t all = std::size_t(into.width) * std::size_t(into.height);
+  if (into.sum.empty()) {  // the first part: the fold starts from zero
+    into.sum.assign(all * 3, 0.0);
+    into.sum_sq.assign(all, 0.0);
+  }
+  if (first > all || pixels > all - first)
+    throw AccumulationError("a part's sums are not of the merge's size");
+  double* s = into.sum.data() + first * 3;
+  double* q = into.sum_sq.data() + first;
+  for (std::size_t k = 0; k < pixels * 3; ++k) s[k] += sum[k];
+  for (std::size_t k = 0; k < pixels; ++k) q[k] += sum_sq[k];
+}
+
 void add_sums(Accumulation& into, const Accumulation& part) {
   const std::size_t pixels = std::size_t(into.width) * std::size_t(into.height);
-  if (into.sum.empty()) {  // the first part: the fold starts from zero
-    into.sum.assign(pixels * 3, 0.0);
-    into.sum_sq.assign(pixels, 0.0);
-  }
-  if (part.sum.size() != into.sum.size() || part.sum_sq.size() != into.sum_sq.size())
+  if (part.sum.size() != pixels * 3 || part.sum_sq.size() != pixels)
     throw AccumulationError("a part's sums are not of the merge's size");
-  for (std::size_t k = 0; k < into.sum.size(); ++k) into.sum[k] += part.sum[k];
-  for (std::size_t k = 0; k < into.sum_sq.size(); ++k) into.sum_sq[k] += part.sum_sq[k];
+  add_sums(into, 0, pixels, part.sum.data(), part.sum_sq.data());
 }
 
 Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {

@@ -34,13 +34,25 @@ std::string ranges_to_string(const std::vector<SampleRange>& ranges);
 // Parses ranges_to_string's output; false if malformed.
 bool parse_ranges(const std::string& text, std::vector<SampleRange>& out);
 
-// What a render is of: parts merge only if all three agree.
+// The estimator's revision: BUMP IT with every change to what a render's
+// samples are (the estimator, integrator, path reuse, light connections,
+// splitting, scattering, sampler, camera, film: anything in src/render, or
+// the scene's compiled world, that changes a pixel's sum). A part carries
+// it (with the project version) so that parts rendered by estimators that
+// differ never merge or resume into one another.
+inline constexpr int kEstimatorRevision = 1;
+// "whisker 0.1.0 estimator 1": the project version and kEstimatorRevision.
+std::string estimator_identity();
+
+// What a render is of: parts merge only if all four agree.
 struct RenderIdentity {
   std::string scene;       // the scene's name
   std::string scene_hash;  // FNV-1a of the scene without settings, and its meshes
   std::string settings;    // the settings as JSON, without spp and target_spp
+  std::string estimator;   // estimator_identity() of the build that rendered it
 };
-// The identity of rendering `scene` (spp and target_spp only shape passes).
+// The identity of rendering `scene` with this build (spp and target_spp only
+// shape passes).
 RenderIdentity render_identity(const Scene& scene);
 
 struct Accumulation {
@@ -62,11 +74,13 @@ struct AccumulationError : std::runtime_error {
 Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
                              const RenderIdentity& id);
 // A snapshot of an accumulation, so mean_image and the stats see it as they
-// see a render.
+// see a render. The second takes the sums over instead of copying them.
 Snapshot snapshot_of(const Accumulation& acc);
+Snapshot snapshot_of(Accumulation&& acc);
 
-// The first field in which a and b differ ("scene", "scene file or meshes",
-// "size", "settings.seed", ...) with both values, or "" if they agree.
+// The first field in which a and b differ ("size", "scene", "estimator",
+// "scene file or meshes", "settings.seed", ...) with both values, or "" if
+// they agree. The size comes first: it is also in the scene file's hash.
 std::string identity_mismatch(const Accumulation& a, const Accumulation& b);
 
 // A part to merge and the file it came from (for messages).
@@ -78,12 +92,17 @@ struct NamedAccumulation {
 // AccumulationError naming the files and the differing field, or the two
 // overlapping ranges.
 Accumulation merge_accumulations(std::vector<NamedAccumulation> parts);
-// The same in steps, so that a merge holds one part's sums at a time:
-// plan_merge checks the parts' headers (their sums may be empty) and returns
-// the merged header with empty sums, and in `order` the order to add the
-// parts' sums in with add_sums (from zero, as merge_accumulations does).
+// The same in steps, so that a merge holds a band of one part's sums at a
+// time: plan_merge checks the parts' headers (their sums may be empty) and
+// returns the merged header with empty sums, and in `order` the order to add
+// the parts' sums in with add_sums (from zero, as merge_accumulations does).
 Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order);
 void add_sums(Accumulation& into, const Accumulation& part);
+// Adds the sums of `pixels` pixels from pixel `first` on (row-major): `sum`
+// holds 3 per pixel, `sum_sq` one. Each element's addition is the one
+// add_sums makes, so adding a part band by band gives the same bits.
+void add_sums(Accumulation& into, std::size_t first, std::size_t pixels, const double* sum,
+              const double* sum_sq);
 // The ranges missing from [0, last end): the gaps between `ranges`.
 std::vector<SampleRange> missing_ranges(const std::vector<SampleRange>& ranges);
 

@@ -1,10 +1,19 @@
 // libFuzzer harness for the part (accumulation EXR) reader: the input is
-// written to a file and read, headers only and whole. A clean refusal
-// (AccumulationError) is fine; any other exception, a crash, a sanitizer
-// report or a part that breaks what merge and resume rely on is a finding.
+// written to a file and read, headers only, whole, and merged on its own. A
+// clean refusal (AccumulationError) is fine; any other exception, a crash, a
+// sanitizer report or a part that breaks what merge and resume rely on is a
+// finding.
+//
+// A part's checksums (whisker.checksum) refuse nearly every mutation, so
+// that the checks behind them would never be reached: an input refused for
+// a checksum that does not match is read again with the checksum the
+// reader computed put in its place (the header's, then the pixels'). Each
+// input is thus read as damaged and as if its writer had written it.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <string>
 
 #include "fuzz_common.h"
 #include "io/accumulation_io.h"
@@ -29,17 +38,64 @@ void check(const whisker::Accumulation& a, bool with_sums) {
     if (!std::isfinite(v) || v < 0) __builtin_trap();
 }
 
+// Puts the CRC a checksum refusal names ("... does not match its checksum
+// (crc32 1a2b3c4d, whisker.checksum says ...)") into whisker.checksum's
+// value in `bytes`; false if the refusal is another one, or the attribute
+// is not where a writer puts it.
+bool reseal(std::string& bytes, const std::string& refusal) {
+  const std::size_t at = refusal.find("does not match its checksum (crc32 ");
+  if (at == std::string::npos) return false;
+  const std::string crc = refusal.substr(at + 35, 8);
+  const std::size_t field = refusal.find("its header does not match") != std::string::npos ? 13 : 29;
+  const std::string tag("whisker.checksum\0string\0", 24);
+  const std::size_t t = bytes.find(tag);
+  if (crc.size() != 8 || t == std::string::npos || t + tag.size() + 4 + 36 > bytes.size()) return false;
+  const std::size_t value = t + tag.size() + 4;  // after the value's 4-byte size
+  if (bytes.compare(value + field, 8, crc) == 0) return false;
+  bytes.replace(value + field, 8, crc);
+  return true;
+}
+
+bool same_sums(const whisker::Accumulation& a, const whisker::Accumulation& b) {
+  return a.sum.size() == b.sum.size() && a.sum_sq.size() == b.sum_sq.size() &&
+         std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0 &&
+         std::memcmp(a.sum_sq.data(), b.sum_sq.data(), a.sum_sq.size() * sizeof(double)) == 0;
+}
+
+// Reads the part at `path` every way; returns the last refusal ("" if none).
+std::string read_every_way(const std::string& path) {
+  std::string refusal;
+  try {
+    check(whisker::read_accumulation_header(path), false);
+  } catch (const whisker::AccumulationError& e) {
+    refusal = e.what();
+  }
+  whisker::Accumulation whole;
+  try {
+    whole = whisker::read_accumulation(path);
+    check(whole, true);
+  } catch (const whisker::AccumulationError& e) {
+    refusal = e.what();
+  }
+  try {
+    // Bands of 2 rows: a merge reads a part band by band into its sums.
+    const whisker::Accumulation merged = whisker::merge_accumulation_files({path}, {}, 2);
+    check(merged, true);
+    if (!same_sums(merged, whole)) __builtin_trap();  // one part merges to itself
+  } catch (const whisker::AccumulationError& e) {
+    refusal = e.what();
+  }
+  return refusal;
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const auto path = whisker_fuzz::write_scratch("input.exr", reinterpret_cast<const char*>(data), size);
-  try {
-    check(whisker::read_accumulation_header(path.string()), false);
-  } catch (const whisker::AccumulationError&) {
-  }
-  try {
-    check(whisker::read_accumulation(path.string()), true);
-  } catch (const whisker::AccumulationError&) {
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  // As given; then resealed (the header's checksum, then the pixels').
+  for (int pass = 0; pass < 3; ++pass) {
+    const auto path = whisker_fuzz::write_scratch("input.exr", bytes.data(), bytes.size());
+    if (!reseal(bytes, read_every_way(path.string()))) break;
   }
   return 0;
 }
