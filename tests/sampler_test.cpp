@@ -171,3 +171,94 @@ TEST(Sampler, IndependentBranchesDiffer) {
   std::sort(first.begin(), first.end());
   EXPECT_EQ(std::adjacent_find(first.begin(), first.end()), first.end());
 }
+
+namespace {
+
+// A Sobol sampler's first `n` 2D requests, for comparing streams.
+std::vector<float> draws(Sampler s, int n = 3) {
+  std::vector<float> out;
+  for (int d = 0; d < n; ++d) {
+    float u, v;
+    s.get2d(u, v);
+    out.push_back(u);
+    out.push_back(v);
+  }
+  return out;
+}
+
+}  // namespace
+
+// Indices below 2^32 keep the points they had before the index became 64
+// bits (values from that version), so the images of such ranges are the same
+// bit for bit: a sample, and a split path's branch at index 2^32 - 1.
+TEST(Sampler, SobolIndicesBelow2To32KeepTheirPoints) {
+  EXPECT_EQ(draws(Sampler(SamplerKind::Sobol, 77, 1000, 9)),
+            (std::vector<float>{0x1.fdcd76p-1f, 0x1.4a271ap-1f, 0x1.a7d64p-1f, 0x1.9bd0fp-4f,
+                                0x1.2471bp-2f, 0x1.e642acp-1f}));
+  const Sampler s(SamplerKind::Sobol, 77, (1u << 20) - 1, 9);
+  const std::vector<float> last{0x1.e95ca8p-2f, 0x1.cf4c2p-1f, 0x1.a3d38p-6f,
+                                0x1.e7cfp-6f,   0x1.21e76cp-2f, 0x1.f7b91ep-1f};
+  EXPECT_EQ(draws(Sampler(s).branch(63, 64).branch(63, 64)), last);
+  EXPECT_EQ(draws(Sampler(SamplerKind::Sobol, 77, 0xffffffffull, 9)), last);
+}
+
+// The red team's case: with 64 x 64 branches, sample 2^26's branches have
+// indices 2^32 + k and 2^38 + k, which in 32 bits were sample 0's. Branch
+// indices past 2^32 and 2^40 (sample 2^28 through 64 x 64) must differ from
+// those below, and be the same index space as a sample's own index.
+TEST(Sampler, SobolBranchesPast2To32And2To40Differ) {
+  for (std::uint32_t pixel : {0u, 77u}) {
+    for (std::uint64_t t = 0; t < 4; ++t) {
+      const Sampler low(SamplerKind::Sobol, pixel, t, 9);
+      for (std::uint64_t high : {(1ull << 26) + t, (1ull << 28) + t}) {
+        const Sampler s(SamplerKind::Sobol, pixel, high, 9);
+        for (std::uint32_t k = 0; k < 64; k += 7) {
+          Sampler a = Sampler(s).branch(k, 64), b = Sampler(low).branch(k, 64);
+          EXPECT_NE(draws(a), draws(b)) << "sample " << high << " branch " << k;
+          EXPECT_EQ(draws(a), draws(Sampler(SamplerKind::Sobol, pixel, high * 64 + k, 9)));
+          const Sampler aa = a.branch(63 - k, 64), bb = b.branch(63 - k, 64);
+          EXPECT_NE(draws(aa), draws(bb)) << "sample " << high << " branches " << k << ", " << 63 - k;
+          const std::uint64_t index = (high * 64 + k) * 64 + 63 - k;
+          EXPECT_EQ(draws(aa), draws(Sampler(SamplerKind::Sobol, pixel, index, 9)));
+        }
+      }
+    }
+  }
+}
+
+// Every block of 2^32 indices has its own scramble: the first 2D points of
+// indices t, 2^32 + t, 2^33 + t and 2^40 + t (a 32-bit index: all one) are
+// all distinct, and so are those of consecutive indices across a block's end.
+TEST(Sampler, SobolIndicesInDifferentBlocksGiveDistinctPoints) {
+  std::set<std::pair<float, float>> seen;
+  int n = 0;
+  for (std::uint64_t base : {0ull, 1ull << 32, 1ull << 33, 1ull << 40, (1ull << 36) - 2048}) {
+    for (std::uint64_t t = 0; t < 4096; ++t, ++n) {
+      Sampler s(SamplerKind::Sobol, 5, base + t, 3);
+      float u, v;
+      s.get2d(u, v);
+      seen.insert({u, v});
+    }
+  }
+  EXPECT_EQ(seen.size(), std::size_t(n));
+}
+
+// Past 2^32 the 64 branches of a sample are still an aligned block of one
+// scramble: their 4D points' first pair is a (0, 6, 2)-net, the second (after
+// the jitter, Sobol's third and fourth dimensions) a (1, 6, 2)-net.
+TEST(Sampler, SobolBranchesPast2To32AreStratified) {
+  for (std::uint64_t i : {(1ull << 26), (1ull << 26) + 3, (1ull << 28) + 1, (1ull << 30) - 1}) {
+    for (int request = 1; request <= 2; ++request) {
+      Sampler s(SamplerKind::Sobol, 1234, i, 11);
+      float u, v;
+      if (request == 2) s.get2d(u, v);  // the pixel jitter, shared by the branches
+      std::vector<std::pair<float, float>> pts;
+      for (std::uint32_t k = 0; k < 64; ++k) {
+        Sampler b = s.branch(k, 64);
+        b.get2d(u, v);
+        pts.emplace_back(u, v);
+      }
+      EXPECT_LE(net_t(pts, 6), request - 1) << "sample " << i << " request " << request;
+    }
+  }
+}

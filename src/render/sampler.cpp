@@ -1,5 +1,7 @@
 #include "render/sampler.h"
 
+#include <cassert>
+
 #ifdef __GFNI__
 #include <immintrin.h>
 #endif
@@ -26,6 +28,18 @@ std::uint32_t reverse_bits(std::uint32_t x) {
 
 std::uint32_t hash32(std::uint32_t a, std::uint32_t b) {
   return std::uint32_t(mix64((std::uint64_t(a) << 32) | b));
+}
+
+// What a Sobol index's block (its high 32 bits) XORs into the pixel's key:
+// MurmurHash3's finalizer fmix32 (Appleby, 2011), a bijection (xor-shifts
+// and odd multipliers invert) with fmix32(0) = 0, so distinct blocks give a
+// pixel distinct keys and block 0 keeps the key it had.
+std::uint32_t block_key(std::uint32_t block) {
+  block ^= block >> 16;
+  block *= 0x85ebca6bu;
+  block ^= block >> 13;
+  block *= 0xc2b2ae35u;
+  return block ^ (block >> 16);
 }
 
 // A Sobol dimension's generator matrix from its primitive polynomial (degree
@@ -111,17 +125,30 @@ Sampler::Sampler(SamplerKind kind, std::uint32_t pixel, std::uint64_t sample, st
     rng_ = Rng(pixel, sample, seed);
   } else {
     reversed_index_ = reverse_bits(std::uint32_t(sample));
-    key_ = std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel));
+    block_ = std::uint32_t(sample >> 32);
+    key_ = std::uint32_t(mix64(seed * 0x9E3779B97F4A7C15ull + pixel)) ^ block_key(block_);
     slot_ = std::uint8_t(pixel % kSeedSlots);
   }
 }
+
+// A sample index below 2^30 (the --samples limit) through branches whose
+// counts multiply to at most kMaxSplitPaths stays below 2^64: no range that
+// --samples accepts wraps.
+static_assert(kMaxSplitPaths <= (1ll << 34));
 
 Sampler Sampler::branch(std::uint32_t k, std::uint32_t count) {
   Sampler b = *this;
   if (kind_ == SamplerKind::Independent) {
     b.rng_ = Rng(k, rng_.next_u64(), 0);
   } else {
-    b.reversed_index_ = reverse_bits(reverse_bits(reversed_index_) * count + k);
+    const std::uint64_t index = std::uint64_t(block_) << 32 | reverse_bits(reversed_index_);
+    assert(count > 0 && index <= (~std::uint64_t(0) - k) / count);
+    const std::uint64_t i = index * count + k;
+    b.reversed_index_ = reverse_bits(std::uint32_t(i));
+    b.block_ = std::uint32_t(i >> 32);
+    // Past block 0 the key changes with the block (the pixel's key, XOR
+    // undone and redone).
+    b.key_ = key_ ^ block_key(block_) ^ block_key(b.block_);
   }
   return b;
 }

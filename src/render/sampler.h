@@ -42,6 +42,15 @@ class Rng {
 // sample order shuffled per pair (Burley section 4). Every coordinate is
 // scrambled with its own per-pixel seed. A 1D request takes a pair's first
 // coordinate.
+//
+// The generator matrices have 32 columns, so the sequence has 2^32 points:
+// a 64-bit sample index takes point (index mod 2^32) of the sequence, and
+// its high 32 bits (the block) pick the scramble: the pixel's key XOR a
+// bijection of the block that keeps block 0's key, so indices below 2^32
+// give the points they always did, and each later block of 2^32 is the
+// whole sequence again under a scramble of its own. Within a block distinct
+// indices give distinct points (the index shuffle is a bijection); blocks
+// are independent randomizations of the same sequence.
 std::uint32_t owen_scramble(std::uint32_t v, std::uint32_t seed);
 std::uint32_t sobol_dim1(std::uint32_t index);
 
@@ -72,9 +81,11 @@ class Sampler {
   }
 
   // Branch k of `count` taken from here on (splitting): the same dimension,
-  // with its own numbers. Sobol: sample index i becomes i*count + k, so the
-  // `count` branches of one sample are one aligned block of the sequence and
-  // stratified among themselves; the index must stay below 2^32.
+  // with its own numbers. Sobol: sample index i becomes i*count + k (64-bit),
+  // so the `count` branches of one sample are one aligned block of the
+  // sequence and stratified among themselves. The index must stay below
+  // 2^64: a sample below 2^30 (the --samples limit) through at most
+  // kMaxSplitPaths branches (settings.h) stays below 2^42.
   Sampler branch(std::uint32_t k, std::uint32_t count);
 
  private:
@@ -83,8 +94,9 @@ class Sampler {
   SamplerKind kind_ = SamplerKind::Independent;
   std::uint8_t slot_ = 0;  // Sobol only: which of the thread's cached pixel seeds (sampler.cpp)
   Rng rng_;                           // Independent only
-  std::uint32_t reversed_index_ = 0;  // Sobol only: the sample index, bits reversed
-  std::uint32_t key_ = 0;             // Sobol only: per-pixel scrambling seed
+  std::uint32_t reversed_index_ = 0;  // Sobol only: the index's low 32 bits, reversed
+  std::uint32_t block_ = 0;           // Sobol only: the index's high 32 bits
+  std::uint32_t key_ = 0;             // Sobol only: the pixel's and block's scrambling seed
   std::uint32_t dim_ = 0;  // dimension pair counter
 };
 
