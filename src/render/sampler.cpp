@@ -147,8 +147,9 @@ Sampler Sampler::branch(std::uint32_t k, std::uint32_t count) {
     b.reversed_index_ = reverse_bits(std::uint32_t(i));
     b.block_ = std::uint32_t(i >> 32);
     // Past block 0 the key changes with the block (the pixel's key, XOR
-    // undone and redone).
-    b.key_ = key_ ^ block_key(block_) ^ block_key(b.block_);
+    // undone and redone); within block 0, the render's usual case, it stays.
+    if ((block_ | b.block_) != 0) [[unlikely]]
+      b.key_ = key_ ^ block_key(block_) ^ block_key(b.block_);
   }
   return b;
 }
