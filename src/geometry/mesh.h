@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,16 @@ struct TriangleMesh {
   std::vector<glm::uvec3> normal_idx;   // per triangle: indices into normals (empty if none)
   std::size_t dropped_degenerate = 0;   // zero-area triangles dropped at load
   std::vector<std::string> warnings;    // e.g. "cat.mtl not found"
+  // The placement these positions carry (p' = p * scale + translate), when
+  // the scene reader shares the mesh between every placement of its file
+  // (the file's first mention's). Objects placed otherwise are instances of
+  // it (scene/world.h). Unset: the positions are those of every object
+  // holding the mesh.
+  struct Placement {
+    float scale = 1.0f;
+    glm::dvec3 translate{0.0};
+  };
+  std::optional<Placement> placed;
 };
 
 }  // namespace whisker

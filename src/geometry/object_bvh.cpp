@@ -7,8 +7,21 @@
 
 namespace whisker {
 
-ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
-  // Objects 0..n-1 are the spheres, object n the mesh (if any).
+Ray MeshInstance::to_local(const Ray& ray) const {
+  // From the exact origin (a sphere's hit keeps its low part), in double.
+  const double inv = 1.0 / scale;
+  Ray local;
+  local.o = vec3((exact_origin(ray) - offset) * inv);
+  local.d = vec3(glm::dvec3(ray.d) * inv);
+  local.tmin = ray.tmin;
+  local.tmax = ray.tmax;
+  return local;
+}
+
+ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box,
+                     std::vector<MeshInstance> instances) {
+  // Objects 0..n-1 are the spheres, object n the mesh (if any), then the
+  // instances.
   std::vector<Box3> boxes;
   std::vector<vec3> cents;
   for (const Sphere& s : spheres) {
@@ -20,10 +33,15 @@ ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
     boxes.push_back(mesh_box);
     cents.push_back(0.5f * (mesh_box.lo + mesh_box.hi));
   }
+  const auto first_instance = static_cast<std::uint32_t>(boxes.size());
+  for (const MeshInstance& m : instances) {
+    boxes.push_back(m.box);
+    cents.push_back(0.5f * (m.box.lo + m.box.hi));
+  }
   if (boxes.empty()) return;
   // Up to 16 objects per leaf (two 8-wide sphere blocks): the report's
   // scenes, 7 to 10 objects, are then a single leaf.
-  const BinaryBvh bin = build_binary_sah(boxes, cents, 16);
+  const BinaryBvh bin = build_binary_sah(std::move(boxes), std::move(cents), 16);
   nodes_.reserve(bin.nodes.size());
   for (const BinaryNode& b : bin.nodes) {
     Node n;
@@ -32,17 +50,21 @@ ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
     n.right = b.right;
     if (b.leaf()) {
       Leaf leaf;
+      leaf.first_instance = static_cast<std::uint32_t>(instances_.size());
       std::vector<Sphere> ss;
       std::vector<std::uint32_t> ids;
       for (std::uint32_t k = b.first; k < b.first + b.count; ++k) {
         const std::uint32_t obj = bin.prims[k];
-        if (obj == mesh_id) {
+        if (obj >= first_instance) {
+          instances_.push_back(instances[obj - first_instance]);
+        } else if (obj == mesh_id) {
           leaf.mesh = true;
         } else {
           ss.push_back(spheres[obj]);
           ids.push_back(obj);
         }
       }
+      leaf.instance_count = static_cast<std::uint32_t>(instances_.size()) - leaf.first_instance;
       leaf.spheres = SphereSet(ss, std::move(ids));
       n.leaf = static_cast<std::uint32_t>(leaves_.size());
       leaves_.push_back(std::move(leaf));
@@ -51,7 +73,7 @@ ObjectBvh::ObjectBvh(const std::vector<Sphere>& spheres, const Box3& mesh_box) {
   }
 }
 
-bool ObjectBvh::intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const Bvh* mesh) {
+bool ObjectBvh::intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const Bvh* mesh) const {
   bool found = false;
   float t;
   std::uint32_t id;
@@ -59,10 +81,41 @@ bool ObjectBvh::intersect_leaf(const Leaf& leaf, const Ray& ray, Hit& hit, const
     hit.t = t;
     hit.kind = PrimKind::Sphere;
     hit.prim = id;
+    hit.instance = kNoSkip;
     found = true;
   }
-  if (leaf.mesh && mesh) found |= mesh->intersect(ray, hit);
+  if (leaf.mesh && mesh && mesh->intersect(ray, hit)) {
+    hit.instance = kNoSkip;
+    found = true;
+  }
+  if (leaf.instance_count) [[unlikely]]
+    found |= intersect_instances(leaf, ray, hit);
   return found;
+}
+
+// Out of line: the bundled scenes have no instances, and their rays' hot
+// loop stays as small as it was.
+[[gnu::noinline]] bool ObjectBvh::intersect_instances(const Leaf& leaf, const Ray& ray, Hit& hit) const {
+  bool found = false;
+  const vec3 inv = safe_inverse(ray.d);
+  for (std::uint32_t k = leaf.first_instance; k < leaf.first_instance + leaf.instance_count; ++k) {
+    const MeshInstance& m = instances_[k];
+    if (box_entry(m.box, ray, inv, std::min(ray.tmax, hit.t)) == kInf) continue;
+    if (m.bvh->intersect(m.to_local(ray), hit)) {
+      hit.instance = m.id;
+      found = true;
+    }
+  }
+  return found;
+}
+
+[[gnu::noinline]] bool ObjectBvh::instances_occlude(const Leaf& leaf, const Ray& ray) const {
+  const vec3 inv = safe_inverse(ray.d);
+  for (std::uint32_t k = leaf.first_instance; k < leaf.first_instance + leaf.instance_count; ++k) {
+    const MeshInstance& m = instances_[k];
+    if (box_entry(m.box, ray, inv, ray.tmax) < kInf && m.bvh->occluded(m.to_local(ray))) return true;
+  }
+  return false;
 }
 
 unsigned ObjectBvh::intersect_batch(const Ray* const* rays, unsigned lanes, Hit* hits,
@@ -90,7 +143,15 @@ unsigned ObjectBvh::intersect_batch(const Ray* const* rays, unsigned lanes, Hit*
   if (leaf.mesh && mesh)
     for (unsigned a = lanes; a; a &= a - 1) {
       const int l = __builtin_ctz(a);
-      if (mesh->intersect(*rays[l], hits[l])) found |= 1u << l;
+      if (mesh->intersect(*rays[l], hits[l])) {
+        hits[l].instance = kNoSkip;
+        found |= 1u << l;
+      }
+    }
+  if (leaf.instance_count)
+    for (unsigned a = lanes; a; a &= a - 1) {
+      const int l = __builtin_ctz(a);
+      if (intersect_instances(leaf, *rays[l], hits[l])) found |= 1u << l;
     }
   return found;
 }
@@ -132,14 +193,15 @@ bool ObjectBvh::intersect(const Ray& ray, Hit& hit, const Bvh* mesh) const {
 }
 
 bool ObjectBvh::occluded_leaf(const Leaf& leaf, const Ray& ray, const Bvh* mesh,
-                              std::uint32_t end_sphere) {
+                              std::uint32_t end_sphere) const {
   return (leaf.spheres.size() && leaf.spheres.occluded(ray, end_sphere)) ||
-         (leaf.mesh && mesh && mesh->occluded(ray));
+         (leaf.mesh && mesh && mesh->occluded(ray)) || (leaf.instance_count && instances_occlude(leaf, ray));
 }
 
-bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphere) const {
+template <class Test>
+bool ObjectBvh::any_leaf(const Ray& ray, Test&& test) const {
   if (nodes_.empty()) return false;
-  if (nodes_.size() == 1) return occluded_leaf(leaves_[0], ray, mesh, end_sphere);
+  if (nodes_.size() == 1) return test(leaves_[0]);
   const vec3 inv = safe_inverse(ray.d);
   std::uint32_t stack[128];
   int top = 0;
@@ -148,13 +210,21 @@ bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphe
     const Node& n = nodes_[stack[--top]];
     if (box_entry(n.box, ray, inv, ray.tmax) == kInf) continue;
     if (n.leaf != kInner) {
-      if (occluded_leaf(leaves_[n.leaf], ray, mesh, end_sphere)) return true;
+      if (test(leaves_[n.leaf])) return true;
       continue;
     }
     stack[top++] = n.left;
     stack[top++] = n.right;
   }
   return false;
+}
+
+bool ObjectBvh::occluded(const Ray& ray, const Bvh* mesh, std::uint32_t end_sphere) const {
+  return any_leaf(ray, [&](const Leaf& leaf) { return occluded_leaf(leaf, ray, mesh, end_sphere); });
+}
+
+bool ObjectBvh::instance_occludes(const Ray& ray) const {
+  return any_leaf(ray, [&](const Leaf& leaf) { return instances_occlude(leaf, ray); });
 }
 
 }  // namespace whisker

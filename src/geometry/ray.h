@@ -50,6 +50,7 @@ struct Hit {
   PrimKind kind = PrimKind::None;
   std::uint32_t prim = 0;  // sphere index or triangle index
   float u = 0.0f, v = 0.0f;  // barycentrics for triangles
+  std::uint32_t instance = kNoSkip;  // a triangle's mesh instance (ObjectBvh), kNoSkip: none
   bool valid() const { return kind != PrimKind::None; }
 };
 

@@ -1,5 +1,6 @@
-// Limits checked on a scene file's text before it is parsed into a document:
-// nesting depth, number of values, keys given twice. Each is one linear pass.
+// Checks of a scene file's text before it is parsed into a document:
+// nesting depth, the values it holds (the document's memory), keys given
+// twice. Each is one linear pass.
 #pragma once
 
 #include <cstddef>
@@ -32,12 +33,12 @@ inline std::string line_column(const std::string& text, std::size_t byte) {
 // needs 5 levels (spheres[0].material.albedo); each level costs the parser
 // about 80 bytes a byte of input ("[[[[..."), so the cap bounds memory too.
 constexpr int kMaxDepth = 64;
-// The most JSON values (numbers, strings, arrays, objects, ...) a scene file
-// may hold. The parsed document takes up to about 100 bytes a value (an empty
-// object), so with the file's own bytes this bounds the reader's memory:
-// under 0.7 GB at the 256 MiB file cap. A sphere is about 12 values, so a
-// scene may hold some 350,000 of them.
-constexpr std::size_t kMaxValues = std::size_t(4) << 20;
+// What the parsed document takes a value (number, string, array, object,
+// or an object's key), at most, besides the text of its strings: about 100
+// bytes for an empty object in an array. With the file's own bytes this is
+// what reading a scene needs (scene_io.cpp checks it against the machine's
+// memory before the document is built).
+constexpr std::size_t kDocumentBytesPerValue = 100;
 
 // Refuses nesting deeper than kMaxDepth, naming the line and column where it
 // goes past: one pass over the bytes, tracking strings and their escapes.
@@ -64,11 +65,15 @@ inline void check_nesting(const std::string& text, const std::string& file) {
 // A first pass over the file with the parser's SAX interface, building
 // nothing: finds a key given twice in one object, which the JSON parser
 // would take silently, keeping the last ({"width": 64, "width": 8192}), and
-// counts the values. Linear in the file: each key is looked up once in the
-// set of its own object. (nlohmann's parse callback is not: on the end of
-// every object it rescans the enclosing array for discarded values.)
+// counts the values and keys. Linear in the file: each key is looked up once
+// in the set of its own object. (nlohmann's parse callback is not: on the end
+// of every object it rescans the enclosing array for discarded values.) It
+// stops after `max_values` (the keys' sets take less than the document
+// would).
 class Prescan : public nlohmann::json_sax<nlohmann::json> {
  public:
+  explicit Prescan(std::size_t max_values) : max_values_(max_values) {}
+
   bool null() override { return value(); }
   bool boolean(bool) override { return value(); }
   bool number_integer(number_integer_t) override { return value(); }
@@ -81,6 +86,7 @@ class Prescan : public nlohmann::json_sax<nlohmann::json> {
   bool end_object() override { return close(); }
   bool end_array() override { return close(); }
   bool key(string_t& k) override {
+    if (++values_ > max_values_) return false;
     if (!open_.empty()) {
       Open& o = open_.back();
       o.key = k;
@@ -95,7 +101,9 @@ class Prescan : public nlohmann::json_sax<nlohmann::json> {
 
   // "camera.width" of the first duplicate, or "".
   const std::string& found() const { return found_; }
-  bool too_many() const { return values_ > kMaxValues; }
+  bool too_many() const { return values_ > max_values_; }
+  // Values and keys read (at most max_values + 1).
+  std::size_t values() const { return values_; }
 
  private:
   struct Open {
@@ -106,7 +114,7 @@ class Prescan : public nlohmann::json_sax<nlohmann::json> {
   };
   bool value() {
     if (!open_.empty() && !open_.back().object) ++open_.back().index;
-    return ++values_ <= kMaxValues;
+    return ++values_ <= max_values_;
   }
   bool open(bool object) {
     if (!value()) return false;
@@ -135,6 +143,7 @@ class Prescan : public nlohmann::json_sax<nlohmann::json> {
   }
   std::vector<Open> open_;
   std::string found_;
+  std::size_t max_values_;
   std::size_t values_ = 0;
 };
 

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <unordered_set>
 
 #include <glm/geometric.hpp>
 
+#include "geometry/mesh.h"
 #include "geometry/unit.h"
 
 namespace whisker {

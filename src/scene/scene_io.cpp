@@ -10,7 +10,6 @@
 #include <fstream>
 #include <sstream>
 #include <map>
-#include <tuple>
 #include <unordered_set>
 
 #include <glm/geometric.hpp>
@@ -19,6 +18,7 @@
 #include "scene/json_fields.h"
 #include "scene/json_prescan.h"
 #include "scene/mesh_io.h"
+#include "scene/scene_memory.h"
 #include "scene/settings_json.h"
 
 namespace whisker {
@@ -54,39 +54,66 @@ void read_camera(const Fields& c, Camera& cam) {
   cam.look_at = c.point("look_at", -kBig, kBig, cam.look_at);
   if (c.has("up")) cam.up = c.direction("up");
   cam.fov_deg = float(c.number("fov", 1.0, 179.0, cam.fov_deg));
-  cam.width = int(c.integer("width", 1, 16384, cam.width));
-  cam.height = int(c.integer("height", 1, 16384, cam.height));
-  // The accumulation holds 32 bytes a pixel (plus 32-byte snapshots):
-  // 4096 x 4096 is half a gigabyte; beyond that, refuse rather than thrash.
-  constexpr long long kMaxPixels = 4096LL * 4096LL;
-  if ((long long)cam.width * cam.height > kMaxPixels)
-    c.fail(c.field("width"), std::to_string(cam.width) + " x " + std::to_string(cam.height) +
-                                 " pixels is more than 4096 x 4096");
+  // The film must fit the machine (named first: a size far past it says
+  // what it needs). Each side in [1, 16384]: the viewer shows the film as
+  // one OpenGL texture, and 16384 is the size OpenGL 4.1 and later promise.
+  constexpr long long kMaxSide = 16384, kAny = 0x7fffffffffffffff;
+  const long long w = c.integer("width", -kAny, kAny, cam.width);
+  const long long h = c.integer("height", -kAny, kAny, cam.height);
+  if (w < 1) c.integer("width", 1, kMaxSide, cam.width);
+  if (h < 1) c.integer("height", 1, kMaxSide, cam.height);
+  const std::string pixels = std::to_string(w) + " x " + std::to_string(h) + " pixels: the film";
+  if (const std::string why = memory_refusal(pixels, film_bytes(w, h), machine_memory()); !why.empty())
+    c.fail(c.field(c.has("width") ? "width" : "height"), why);
+  cam.width = int(c.integer("width", 1, kMaxSide, cam.width));
+  cam.height = int(c.integer("height", 1, kMaxSide, cam.height));
   // As the camera frame will compute them (camera.h, camera_right).
   if (cam.look_at == cam.position) c.fail(c.field("look_at"), "must differ from camera.position");
   if (camera_right(cam, view_direction(cam)) == vec3(0.0f))
     c.fail(c.field("up"), "must not be parallel to the view direction");
 }
 
-// The meshes a scene has loaded: each file read once, each placement of it
-// built once (memory follows the distinct meshes, not the mentions).
+// The meshes a scene has loaded: each file read once and placed once, at
+// its first mention; its other placements share that mesh, which records
+// the placement it carries (World places them as instances of it): memory
+// follows the distinct files, not the mentions.
 class LoadedMeshes {
  public:
   std::shared_ptr<const TriangleMesh> get(const fs::path& resolved, float scale, const dvec3& tr) {
     std::error_code ec;
     fs::path id = fs::canonical(resolved, ec);
     if (ec) id = resolved;
-    auto& file = files_[id.string()];
-    if (!file) file = std::make_shared<const ObjFile>(read_obj(resolved.string()));
-    auto& placed = placements_[{id.string(), scale, tr.x, tr.y, tr.z}];
-    if (!placed) placed = std::make_shared<const TriangleMesh>(place_obj(*file, scale, tr));
-    return placed;
+    Loaded& file = files_[id.string()];
+    if (!file.mesh) {
+      const ObjFile obj = read_obj(resolved.string());
+      TriangleMesh mesh = place_obj(obj, scale, tr);
+      mesh.placed = TriangleMesh::Placement{scale, tr};
+      file.mesh = std::make_shared<const TriangleMesh>(std::move(mesh));
+      for (std::size_t i = 0; i < obj.coords.size(); ++i) {
+        file.lo[i % 3] = std::min(file.lo[i % 3], obj.coords[i]);
+        file.hi[i % 3] = std::max(file.hi[i % 3], obj.coords[i]);
+      }
+    } else {
+      check_finite(file, resolved.string(), scale, tr);
+    }
+    return file.mesh;
   }
 
  private:
-  std::map<std::string, std::shared_ptr<const ObjFile>> files_;
-  std::map<std::tuple<std::string, float, double, double, double>, std::shared_ptr<const TriangleMesh>>
-      placements_;
+  struct Loaded {
+    std::shared_ptr<const TriangleMesh> mesh;
+    dvec3 lo{HUGE_VAL}, hi{-HUGE_VAL};  // of the file's own coordinates
+  };
+  // What place_obj checks of every placement: its vertices stay finite in
+  // float. The placement is monotonic, so the corners of the file's box say it.
+  static void check_finite(const Loaded& file, const std::string& path, float scale, const dvec3& tr) {
+    for (const dvec3& corner : {file.lo, file.hi}) {
+      const glm::vec3 p(corner * double(scale) + tr);
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw MeshError(path + ": a vertex is not finite after scale/translate");
+    }
+  }
+  std::map<std::string, Loaded> files_;
 };
 
 // The data folder next to the running binary: <bin>/../share/whisker when
@@ -210,15 +237,7 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,
                   const std::string& mesh_override) {
   check_nesting(text, file);
-  Prescan pre;
-  // On a syntax error the pass stops: the parse below names its line.
-  const bool well_formed = json::sax_parse(text, &pre);
-  if (pre.too_many())
-    throw SceneError(file + ": more than " + std::to_string(kMaxValues) +
-                     " values; not a scene file");
-  if (well_formed && !pre.found().empty())
-    throw SceneError(file + ": " + pre.found() + ": given twice; keep one");
-
+  check_document(text, file);  // memory, keys given twice
   json j;
   try {
     j = json::parse(text);
@@ -291,8 +310,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       const fs::path resolved = resolve_mesh(m.path, base_dir, file + ": " + f.field("path"));
       m.file = resolved.string();
       try {
-        // A file named several times is read once; the same placement of it
-        // is one mesh, shared (memory follows the distinct meshes).
+        // A file named several times is read once and held once.
         m.mesh = loaded.get(resolved, m.scale, m.translate);
       } catch (const MeshError& e) {
         throw SceneError(file + ": " + f.field("path") + ": " + e.what());
@@ -300,6 +318,7 @@ Scene parse_scene(const std::string& text, const std::string& file, const fs::pa
       scene.meshes.push_back(std::move(m));
     }
   }
+  check_render_memory(scene, file);
   return scene;
 }
 
@@ -326,18 +345,32 @@ Scene load_scene(const fs::path& path, const std::string& mesh_override) {
     throw SceneError(path.string() + ": is a device, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path.string() + ": cannot open scene file: " + std::strerror(errno));
-  constexpr std::size_t kMaxSceneBytes = std::size_t(256) << 20;
+  // Reading holds the text, and the parser a copy of its longest token and
+  // the value made of it: three times the file, at the least. A file that
+  // cannot have that is refused from its size, before it is read; what is
+  // read from a pipe stops where it would pass it.
+  const std::uint64_t memory = machine_memory();
+  const std::uint64_t most = memory ? memory / 3 : ~std::uint64_t(0);
+  const auto too_big = [&](std::uint64_t bytes, const char* how) {
+    return SceneError(path.string() + ": " +
+                      memory_refusal(std::string("reading ") + how + memory_text(bytes, false), 3 * bytes, memory));
+  };
   std::string text;
-  // Reserved when the size is known, so that growing never holds two copies.
   if (fs::is_regular_file(st)) {
     const auto size = fs::file_size(path, ec);
-    if (!ec && size <= kMaxSceneBytes) text.reserve(std::size_t(size));
+    if (!ec && size > most) throw too_big(size, "a file of ");
+    // Reserved when the size is known, so that growing never holds two copies.
+    if (!ec) text.reserve(std::size_t(size));
   }
   std::vector<char> buf(1 << 16);
   while (in.read(buf.data(), std::streamsize(buf.size())) || in.gcount() > 0) {
-    text.append(buf.data(), std::size_t(in.gcount()));
-    if (text.size() > kMaxSceneBytes)
-      throw SceneError(path.string() + ": over 256 MiB; not a scene file");
+    const auto n = std::size_t(in.gcount());
+    if (text.size() + n > most) throw too_big(text.size() + n, "over ");
+    // Grown by at most `most`, so that the copy a reallocation makes stays
+    // within the bound too.
+    if (text.size() + n > text.capacity())
+      text.reserve(std::size_t(std::min<std::uint64_t>(2 * text.capacity() + n, most)));
+    text.append(buf.data(), n);
   }
   return parse_scene(text, path.string(), path.parent_path(), mesh_override);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <unordered_map>
 
 #include <glm/geometric.hpp>
 
@@ -32,27 +33,117 @@ World::World(const Scene& scene, const World* reuse) {
     }
   }
   set_light_cages();
-  std::vector<const TriangleMesh*> sources;
   for (const auto& m : scene.meshes) {
     mesh_material_.push_back(m.material);
     mesh_vertex_normals_.push_back(m.vertex_normals);
-    sources.push_back(m.mesh.get());
   }
-  if (sources.empty()) {
-    objects_ = ObjectBvh(spheres_, Box3{});
-    return;
+  build_meshes(scene, reuse);
+}
+
+void World::build_meshes(const Scene& scene, const World* reuse) {
+  // The objects holding each mesh, meshes in the order of their first holder.
+  std::vector<const TriangleMesh*> order;
+  std::unordered_map<const TriangleMesh*, std::vector<std::uint32_t>> users;
+  for (std::uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
+    auto& u = users[scene.meshes[mi].mesh.get()];
+    if (u.empty()) order.push_back(scene.meshes[mi].mesh.get());
+    u.push_back(mi);
   }
+  std::vector<std::uint32_t> once;
+  std::vector<const TriangleMesh*> sources;
+  for (std::uint32_t mi = 0; mi < scene.meshes.size(); ++mi)
+    if (users[scene.meshes[mi].mesh.get()].size() == 1) {
+      once.push_back(mi);
+      sources.push_back(scene.meshes[mi].mesh.get());
+    }
   const BvhMethod method = scene.settings.accel;
-  // The triangles are in render space: a BVH is shared only by Worlds with
-  // the same camera position (a moved camera rebuilds it).
-  if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
-      reuse->mesh_->method == method && reuse->mesh_->origin == origin_) {
-    mesh_ = reuse->mesh_;
-  } else {
-    build_mesh(scene, method);
+  if (!once.empty()) {
+    // The triangles are in render space: a BVH is shared only by Worlds with
+    // the same camera position (a moved camera rebuilds it).
+    if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
+        reuse->mesh_->method == method && reuse->mesh_->origin == origin_)
+      mesh_ = reuse->mesh_;
+    else
+      mesh_ = build_mesh(scene, once, origin_);
   }
-  objects_ = ObjectBvh(spheres_, mesh_->bounds);
-  build_light_buffer(method);
+  std::vector<MeshInstance> placed;
+  for (const TriangleMesh* mesh : order) {
+    const std::vector<std::uint32_t>& u = users[mesh];
+    if (u.size() < 2) continue;
+    const auto index = static_cast<std::uint32_t>(shared_.size());
+    shared_.push_back(shared_mesh(scene, u.front(), reuse));
+    for (MeshInstance& m : place_instances(scene, u, index)) placed.push_back(m);
+  }
+  objects_ = ObjectBvh(spheres_, mesh_ ? mesh_->bounds : Box3{}, std::move(placed));
+  if (mesh_) build_light_buffer(method);
+}
+
+// The mesh of scene.meshes[object], built in a frame of its own (its
+// middle, as the mesh holds it): whatever the camera, the same BVH, so
+// `reuse`'s is taken when it has one.
+std::shared_ptr<const World::MeshData> World::shared_mesh(const Scene& scene, std::uint32_t object,
+                                                         const World* reuse) const {
+  const TriangleMesh& mesh = *scene.meshes[object].mesh;
+  if (reuse)
+    for (const auto& d : reuse->shared_)
+      if (d->sources.front() == &mesh && d->method == scene.settings.accel) return d;
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::dvec3 p = mesh.exact.empty() ? glm::dvec3(mesh.positions[i]) : mesh.exact[i];
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  return build_mesh(scene, {object}, 0.5 * (lo + hi));
+}
+
+// The instances of shared_[mesh], one for each object in `users`: the
+// object's placement relative to the one the mesh's positions carry.
+std::vector<MeshInstance> World::place_instances(const Scene& scene,
+                                                 const std::vector<std::uint32_t>& users,
+                                                 std::uint32_t mesh) {
+  const MeshData& data = *shared_[mesh];
+  std::vector<MeshInstance> placed;
+  for (const std::uint32_t mi : users) {
+    const MeshObject& m = scene.meshes[mi];
+    const TriangleMesh::Placement own{m.scale, m.translate};
+    const TriangleMesh::Placement held = m.mesh->placed.value_or(own);
+    Instance in;
+    in.object = mi;
+    in.mesh = mesh;
+    // x (as held) -> (x - held.translate) * scale + translate (the object's).
+    if (held.scale == m.scale && held.translate == m.translate) {
+      in.offset = data.origin - origin_;
+    } else {
+      in.scale = double(m.scale) / double(held.scale);
+      in.offset = (data.origin - held.translate) * in.scale + m.translate - origin_;
+    }
+    MeshInstance bvh_in;
+    bvh_in.bvh = &data.bvh;
+    bvh_in.scale = in.scale;
+    bvh_in.offset = in.offset;
+    bvh_in.id = static_cast<std::uint32_t>(instances_.size());
+    // Its box in render space, padded past the roundings of the ray's move
+    // into the frame and of the box's corners.
+    const glm::dvec3 lo = glm::dvec3(data.bounds.lo) * in.scale + in.offset;
+    const glm::dvec3 hi = glm::dvec3(data.bounds.hi) * in.scale + in.offset;
+    const glm::dvec3 pad = (glm::abs(lo) + glm::abs(hi) + (hi - lo)) * 0x1p-20;
+    bvh_in.box = Box3{vec3(lo - pad), vec3(hi + pad)};
+    instances_.push_back(in);
+    placed.push_back(bvh_in);
+  }
+  return placed;
+}
+
+std::size_t World::triangle_count() const {
+  std::size_t n = mesh_ ? mesh_->tris.size() : 0;
+  for (const Instance& in : instances_) n += shared_[in.mesh]->tris.size();
+  return n;
+}
+
+std::size_t World::stored_triangle_count() const {
+  std::size_t n = mesh_ ? mesh_->tris.size() : 0;
+  for (const auto& d : shared_) n += d->tris.size();
+  return n;
 }
 
 void World::build_light_buffer(BvhMethod method) {
@@ -72,20 +163,25 @@ void World::build_light_buffer(BvhMethod method) {
   light_buffer_ = LightBuffer(light_.position, mesh_->tris, reach, cells);
 }
 
-void World::build_mesh(const Scene& scene, BvhMethod method) {
+// The triangles of the scene's mesh objects `objects`, less `origin` (in
+// double, then rounded to float), in one BVH.
+std::shared_ptr<const World::MeshData> World::build_mesh(const Scene& scene,
+                                                        const std::vector<std::uint32_t>& objects,
+                                                        const glm::dvec3& origin) const {
   auto data = std::make_shared<MeshData>();
-  for (const auto& m : scene.meshes) data->sources.push_back(m.mesh.get());
-  data->method = method;
-  data->origin = origin_;
+  for (const std::uint32_t mi : objects) data->sources.push_back(scene.meshes[mi].mesh.get());
+  data->method = scene.settings.accel;
+  data->origin = origin;
   std::vector<Triangle> tris;
   bool any_normals = false;
-  for (const auto& m : scene.meshes) any_normals |= m.vertex_normals && !m.mesh->normals.empty();
-  for (std::uint32_t mi = 0; mi < scene.meshes.size(); ++mi) {
+  for (const std::uint32_t mi : objects)
+    any_normals |= scene.meshes[mi].vertex_normals && !scene.meshes[mi].mesh->normals.empty();
+  for (const std::uint32_t mi : objects) {
     const TriangleMesh& mesh = *scene.meshes[mi].mesh;
-    // Vertices in render space, subtracted in double from the double-precision
+    // Vertices less the origin, subtracted in double from the double-precision
     // positions when the loader kept them (one rounding to float).
     const auto vertex = [&](unsigned i) {
-      return mesh.exact.empty() ? to_render(mesh.positions[i]) : vec3(mesh.exact[i] - origin_);
+      return mesh.exact.empty() ? vec3(glm::dvec3(mesh.positions[i]) - origin) : vec3(mesh.exact[i] - origin);
     };
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const glm::uvec3 idx = mesh.triangles[t];
@@ -112,8 +208,8 @@ void World::build_mesh(const Scene& scene, BvhMethod method) {
     }
   }
   data->tris = tris;
-  data->bvh = Bvh::build(std::move(tris), method);
-  mesh_ = std::move(data);
+  data->bvh = Bvh::build(std::move(tris), data->method);
+  return data;
 }
 
 void World::set_light_clearance(const Scene& scene) {
@@ -196,7 +292,8 @@ bool World::intersect(const Ray& ray, SurfaceHit& out) const {
 
 void World::record(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
   if (hit.kind == PrimKind::Sphere) record_sphere(ray, hit, out);
-  else record_triangle(hit, out);
+  else if (hit.instance == kNoSkip) record_triangle(hit, out);
+  else record_instance(hit, out);
 }
 
 void World::record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const {
@@ -212,6 +309,26 @@ void World::record_triangle(const Hit& hit, SurfaceHit& out) const {
   if (mesh_vertex_normals_[obj] && !m.ns.empty())
     out.ns = interpolated_normal(m.ns[hit.prim], hit.u, hit.v, out.ng);
   out.material = &mesh_material_[obj];
+}
+
+// As record_triangle, in the instance's frame, the point then moved to
+// render space (in double). Its error bound grows by the scale, by the
+// rounding of the move, and by that of a ray leaving it moved back into the
+// frame (MeshInstance::to_local): each half an ulp of the point's
+// coordinates there or here, doubled.
+void World::record_instance(const Hit& hit, SurfaceHit& out) const {
+  const Instance& in = instances_[hit.instance];
+  const MeshData& m = *shared_[in.mesh];
+  static_cast<SurfacePoint&>(out) =
+      triangle_surface_point(m.tris[hit.prim], m.ng[hit.prim], hit.t, hit.u, hit.v);
+  const glm::dvec3 local(out.p);
+  const glm::dvec3 p = local * in.scale + in.offset;
+  out.p = vec3(p);
+  const glm::dvec3 err = (glm::dvec3(out.err) + glm::abs(local) * 0x1p-23) * in.scale + glm::abs(p) * 0x1p-23;
+  out.err = vec3(err * (1.0 + 0x1p-20));
+  if (mesh_vertex_normals_[in.object] && !m.ns.empty())
+    out.ns = interpolated_normal(m.ns[hit.prim], hit.u, hit.v, out.ng);
+  out.material = &mesh_material_[in.object];
 }
 
 bool World::occluded(const Ray& ray, std::uint32_t end_sphere) const {

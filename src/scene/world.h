@@ -1,6 +1,8 @@
-// The compiled scene: everything a ray can hit (the spheres and the
-// triangles of all meshes, in one BVH, under one object-level BVH), each
-// primitive's material, and the point light with its shadow test.
+// The compiled scene: everything a ray can hit (the spheres; the triangles
+// of the meshes placed once, in one BVH; the meshes placed several times,
+// each in a BVH of its own that every placement shares; all under one
+// object-level BVH), each primitive's material, and the point light with
+// its shadow test.
 #pragma once
 
 #include <array>
@@ -38,7 +40,12 @@ class World {
  public:
   World() = default;
   // Expands hollow spheres into their two glass shells, gathers triangles.
-  // `reuse` may hold a World built from the same meshes: its BVH is shared.
+  // A mesh several of the scene's objects hold (scene_io.cpp shares one
+  // between the placements of a file) is built once, in a frame of its own
+  // (its middle, unscaled), and each of them is an instance of it: memory
+  // follows the distinct meshes, not the placements. A mesh one object
+  // holds is placed in render space with the others held once, in one BVH.
+  // `reuse` may hold a World built from the same meshes: its BVHs are shared.
   explicit World(const Scene& scene, const World* reuse = nullptr);
 
   bool intersect(const Ray& ray, SurfaceHit& out) const;
@@ -65,8 +72,8 @@ class World {
     return objects_.intersect_batch(rays, lanes, hits, mesh_ ? &mesh_->bvh : nullptr);
   }
   const Material& material(const Hit& hit) const {
-    return hit.kind == PrimKind::Sphere ? sphere_material_[hit.prim]
-                                        : mesh_material_[mesh_->object[hit.prim]];
+    if (hit.kind == PrimKind::Sphere) return sphere_material_[hit.prim];
+    return mesh_material_[hit.instance == kNoSkip ? mesh_->object[hit.prim] : instances_[hit.instance].object];
   }
   void record(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   // Any hit in (ray.tmin, ray.tmax). A segment that ends on a sphere, seen
@@ -104,8 +111,10 @@ class World {
   bool occluded_to_light(const Ray& ray, float dist2, const vec3& from_light) const {
     if (!light_cages_.empty() && outside_a_light_cage(ray)) return true;
     if (dist2 < light_clear2_) {
-      if (!mesh_) return false;
-      return light_buffer_.covers(ray) ? light_buffer_.occluded(ray, from_light) : mesh_->bvh.occluded(ray);
+      if (mesh_ && (light_buffer_.covers(ray) ? light_buffer_.occluded(ray, from_light)
+                                              : mesh_->bvh.occluded(ray)))
+        return true;
+      return objects_.has_instances() && objects_.instance_occludes(ray);
     }
     return occluded(ray, light_on_.empty() ? kNoSkip : light_sphere_passed(ray));
   }
@@ -114,37 +123,60 @@ class World {
   // skips the spheres (see light_clear2_).
   float light_clearance2() const { return light_clear2_; }
   std::size_t sphere_count() const { return spheres_.size(); }
-  std::size_t triangle_count() const { return mesh_ ? mesh_->bvh.triangle_count() : 0; }
+  // The triangles a ray may meet: an instance's count once for each.
+  std::size_t triangle_count() const;
+  // The BVH of the meshes placed once (none: nullptr).
   const Bvh* bvh() const { return mesh_ ? &mesh_->bvh : nullptr; }
+  // The triangles stored: each mesh once, however many times it is placed.
+  std::size_t stored_triangle_count() const;
+  std::size_t instance_count() const { return instances_.size(); }
 
  private:
   // Triangle data, immutable once built and shared between Worlds.
   struct MeshData {
     Bvh bvh;
     std::vector<std::uint32_t> object;    // per triangle: mesh index in the scene
-    std::vector<Triangle> tris;           // the triangles (render space), for hit points
+    std::vector<Triangle> tris;           // the triangles (less `origin`), for hit points
     std::vector<vec3> ng;                 // per triangle: unit geometric normal
     std::vector<std::array<vec3, 3>> ns;  // per triangle corner normals (if any mesh uses them)
     std::vector<const TriangleMesh*> sources;  // identity of the meshes it was built from
     BvhMethod method = BvhMethod::Sah;
-    glm::dvec3 origin{0.0};  // the render space it was built in
+    // The world point its coordinates are relative to: the camera (render
+    // space) for the meshes placed once; a shared mesh's middle.
+    glm::dvec3 origin{0.0};
     Box3 bounds;  // of all triangles
+  };
+  // A placement of a shared mesh: render point = its point * scale + offset.
+  struct Instance {
+    std::uint32_t object = 0;  // the scene's mesh object (material, normals)
+    std::uint32_t mesh = 0;    // in shared_
+    double scale = 1.0;
+    glm::dvec3 offset{0.0};
   };
   void set_light_clearance(const Scene& scene);
   void set_light_cages();
   bool outside_a_light_cage(const Ray& ray) const;
   std::uint32_t light_sphere_passed(const Ray& ray) const;
-  void build_mesh(const Scene& scene, BvhMethod method);
+  void build_meshes(const Scene& scene, const World* reuse);
+  std::shared_ptr<const MeshData> build_mesh(const Scene& scene, const std::vector<std::uint32_t>& objects,
+                                             const glm::dvec3& origin) const;
+  std::shared_ptr<const MeshData> shared_mesh(const Scene& scene, std::uint32_t object,
+                                              const World* reuse) const;
+  std::vector<MeshInstance> place_instances(const Scene& scene, const std::vector<std::uint32_t>& users,
+                                            std::uint32_t mesh);
   void build_light_buffer(BvhMethod method);
   void record_sphere(const Ray& ray, const Hit& hit, SurfaceHit& out) const;
   void record_triangle(const Hit& hit, SurfaceHit& out) const;
+  void record_instance(const Hit& hit, SurfaceHit& out) const;
 
   std::vector<Sphere> spheres_;
   ObjectBvh objects_;  // spheres and the mesh, one structure
   std::vector<Material> sphere_material_;
   std::vector<Material> mesh_material_;
   std::vector<bool> mesh_vertex_normals_;
-  std::shared_ptr<const MeshData> mesh_;
+  std::shared_ptr<const MeshData> mesh_;  // the meshes placed once, render space
+  std::vector<std::shared_ptr<const MeshData>> shared_;  // meshes placed several times
+  std::vector<Instance> instances_;  // their placements (Hit::instance)
   // A segment from the light L to a point p outside a sphere (centre c,
   // radius r) that passes through the sphere leaves it at distance
   // t2 >= sqrt(|L - c|^2 - r^2) from L (the product of the two roots is the

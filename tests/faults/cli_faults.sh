@@ -608,7 +608,9 @@ PY
     done
     run --headless --scene scene.json --quiet --spp 1 --frames 4 --resume far.exr --out-sum r.exr
     expect_rc 2
-    expect_err "^whisker: --resume far.exr: .*sample index limit"
+    # Its range edited by hand: the header checksum refuses it before the
+    # range's own check (below 2^30, as --samples) is reached.
+    expect_err "^whisker: --resume far.exr: damaged: its header does not match its checksum"
     [ ! -e r.exr ] || fail "far.exr was resumed"
     ;;
   checkpoint-warns-once)
@@ -798,7 +800,19 @@ PY
         "$bin" --headless --scene scene.json --quiet --samples $r --depth 0 --out-sum "p$r.exr" >/dev/null 2>&1 ||
           fail "cannot write the part $r"
       done
+      # A merge holds the merged sums and a band of one part (56 bytes a
+      # pixel): 1024 x 1024 parts merge under 200 MB (a whole part at a
+      # time needed 204 bytes a pixel, 214 MB); 2048 x 2048 do not fit.
       (ulimit -v 200000 && "$bin" merge p0:1.exr p1:2.exr --out m.png >out.txt 2>err.txt)
+      rc=$?
+      expect_rc 0
+      [ -f m.png ] || fail "the streaming merge wrote nothing"
+      scene 2048 2048
+      for r in 0:1 1:2; do
+        "$bin" --headless --scene scene.json --quiet --samples $r --depth 0 --out-sum "q$r.exr" >/dev/null 2>&1 ||
+          fail "cannot write the part $r"
+      done
+      (ulimit -v 200000 && "$bin" merge q0:1.exr q1:2.exr --out m2.png >out.txt 2>err.txt)
       rc=$?
       expect_rc 2
       expect_err "^whisker: merge: not enough memory for merging: needs about"
@@ -867,22 +881,22 @@ PY
   scene-parse-linear)
     # The duplicate-key check rescanned the enclosing array at the end of
     # each object in it: 400,000 objects took 44 s, a file at the cap weeks.
-    # At the value cap (4 Mi values, here empty objects in one array) the
-    # scene loads within a generous time and memory; one more value is refused.
+    # 4 Mi values (here empty objects in one array; once a fixed cap) load
+    # within a generous time and memory, and so does a file past that old
+    # cap: the limit is the machine's memory, estimated up front.
     python3 -c "
 n = 4 * 1024 * 1024 - 6
 body = ','.join(['{}'] * n)
 open('big.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ']}')
 open('over.json', 'w').write('{\"camera\": {\"width\": 8, \"height\": 8}, \"description\": [' + body + ',{},{}]}')
 " || skip "python3 missing"
-    under_memory_cap 1000 timeout -s KILL 90 "$bin" --headless --scene big.json --quiet --frames 1 --spp 1 \
-      --stats s.json >out.txt 2>err.txt
-    rc=$?
-    [ "$rc" -ne 137 ] || fail "a scene of 4 Mi values took over 90 s to load"
-    expect_rc 0
-    run --headless --scene over.json --quiet --frames 1 --spp 1 --stats s.json
-    expect_rc 2
-    expect_err "^whisker: over.json: more than 4194304 values; not a scene file$"
+    for f in big over; do
+      under_memory_cap 1000 timeout -s KILL 90 "$bin" --headless --scene $f.json --quiet --frames 1 --spp 1 \
+        --stats s.json >out.txt 2>err.txt
+      rc=$?
+      [ "$rc" -ne 137 ] || fail "a scene of 4 Mi values ($f.json) took over 90 s to load"
+      expect_rc 0
+    done
     ;;
   scene-nesting-capped)
     # 60 MB of "[[[[..." took 4.6 GB: nesting deeper than 64 levels is
