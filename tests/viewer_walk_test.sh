@@ -32,10 +32,10 @@ edit roll 256 400 3; step 2-wheel-in
 edit roll 256 400 -8; step 3-wheel-out
 # The panel of the cat (912x800 window): the light's x, the sampling section.
 edit slide 540 451 580 451; step 4-light
-edit tap 529 612; step 5-glass
+edit tap 529 635; step 5-glass
 edit tap 721 520; step 6-fresnel
 edit tap 529 520; step 7-indirect-off
-edit tap 560 566; step 8-depth
+edit tap 560 589; step 8-depth
 edit hold_key z ctrl; step 9-undo
 edit hold_key y ctrl; step 10-redo
 mark; hold_key s; wait_message; step 11-save
@@ -64,7 +64,7 @@ if what == "images":  # every step's image area a sane render
 if what == "steady":  # ticking glass mesh moved nothing below its row
     a, b = read_xwd(f"{d}/4-light.xwd"), read_xwd(f"{d}/5-glass.xwd")
     x0 = area[0] + area[2] + 4
-    rows = [y for y in range(626, 780) if crop(a, x0, y, 70, 1)[2] != crop(b, x0, y, 70, 1)[2]]
+    rows = [y for y in range(649, 780) if crop(a, x0, y, 70, 1)[2] != crop(b, x0, y, 70, 1)[2]]
     print(f"rows of the panel's left strip below the glass mesh row that differ: {len(rows)}")
     sys.exit(0 if not rows else 1)
 if what == "log":
