@@ -796,10 +796,15 @@ PY
     expect_rc 0
     [ -f at-bound.png ] || fail "the render at the bound wrote nothing"
     if [ $exr = 1 ]; then
-      for r in 0:1 1:2; do
-        "$bin" --headless --scene scene.json --quiet --samples $r --depth 0 --out-sum "p$r.exr" >/dev/null 2>&1 ||
-          fail "cannot write the part $r"
-      done
+      # two_parts PREFIX: the parts 0:1 and 1:2 of scene.json, PREFIX0:1.exr and PREFIX1:2.exr.
+      two_parts() {
+        local r
+        for r in 0:1 1:2; do
+          "$bin" --headless --scene scene.json --quiet --samples $r --depth 0 --out-sum "$1$r.exr" >/dev/null 2>&1 ||
+            fail "cannot write the part $r"
+        done
+      }
+      two_parts p
       # A merge holds the merged sums and a band of one part (56 bytes a
       # pixel): 1024 x 1024 parts merge under 200 MB (a whole part at a
       # time needed 204 bytes a pixel, 214 MB); 2048 x 2048 do not fit.
@@ -808,10 +813,7 @@ PY
       expect_rc 0
       [ -f m.png ] || fail "the streaming merge wrote nothing"
       scene 2048 2048
-      for r in 0:1 1:2; do
-        "$bin" --headless --scene scene.json --quiet --samples $r --depth 0 --out-sum "q$r.exr" >/dev/null 2>&1 ||
-          fail "cannot write the part $r"
-      done
+      two_parts q
       (ulimit -v 200000 && "$bin" merge q0:1.exr q1:2.exr --out m2.png >out.txt 2>err.txt)
       rc=$?
       expect_rc 2
