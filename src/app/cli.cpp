@@ -125,6 +125,12 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Linear float output (.pfm or .exr; see --float-units); an EXR header holds "
                  "the scene, spp, seed, camera, settings and render time");
   app.add_option("--stats", o.stats_json, "Write render statistics as JSON");
+  app.add_option("--out-denoised", o.out_denoised,
+                 "Headless: also write a denoised copy of the image (.png, .pfm or .exr; the raw "
+                 "outputs stay as they are), with its estimated error in the stats");
+  app.add_option("--denoiser", o.denoiser,
+                 "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
+      ->capture_default_str();
   app.add_option("--screenshot", o.screenshot,
                  "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
@@ -288,7 +294,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   // An option given "" is an error, not an option left out (--out "" beside
   // --stats wrote no image, silently).
   for (const char* name : {"--scene", "--mesh", "--light", "--out", "--out-float", "--stats",
-                           "--screenshot", "--edit-light", "--samples", "--resume", "--out-sum"}) {
+                           "--out-denoised", "--screenshot", "--edit-light", "--samples", "--resume", "--out-sum"}) {
     const CLI::Option* opt = app.get_option(name);
     for (const std::string& r : opt->results())
       if (r.empty()) return usage_error(std::string(name) + ": needs a value, got \"\" (see --help)");

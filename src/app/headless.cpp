@@ -17,6 +17,7 @@
 #include "io/accumulation_io.h"
 #include "io/image_io.h"
 #include "io/stats_io.h"
+#include "render/film_denoise.h"
 #include "render/progressive.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
@@ -68,7 +69,7 @@ ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
 // The outputs, in the order written.
 std::vector<std::string> output_names(const HeadlessOptions& o) {
   std::vector<std::string> names;
-  for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.stats_json})
+  for (const std::string* out : {&o.out_png, &o.out_float, &o.out_sum, &o.out_denoised, &o.stats_json})
     if (!out->empty()) names.push_back(printable(*out));
   return names;
 }
@@ -91,6 +92,60 @@ void note_written(const HeadlessOptions& o, std::size_t written) {
                 (not_written.empty() ? "" : "not written: " + not_written));
 }
 
+// The scales the denoised image's error is estimated at (box filters, px).
+constexpr int kDenoiseScales[] = {1, 2, 4, 8, 16};
+
+// Writes the denoised copy of `snap` to o.out_denoised (a deterministic
+// estimate is exact: its copy is the image itself), prints its estimated
+// error against the raw image's, and returns the stats' "denoised" record.
+std::string write_denoised(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap,
+                           const Image& raw, int threads) {
+  const char* filter = o.denoise_fast ? "fast" : "quality";
+  nlohmann::json rec = {{"file", o.out_denoised}};
+  Image img = raw;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (deterministic_estimate(scene)) {
+    rec["filter"] = "none: the estimate is exact";
+  } else {
+    FilmHalves halves;
+    if (const std::string why = film_halves(snap, halves); !why.empty())
+      throw ImageError("--out-denoised " + printable(o.out_denoised) + ": " + why);
+    const DenoiseInput in = halves.input();
+    const DenoiseResult r =
+        denoise(in, {o.denoise_fast ? DenoiseFilter::Fast : DenoiseFilter::Quality, threads});
+    img.rgb = r.rgb;
+    rec["filter"] = filter;
+    rec["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Mean squared error per block and channel against the true image, in
+    // the image's units, both from the two half images (render/denoise.h).
+    std::string line;
+    for (const int k : kDenoiseScales) {
+      if (k > std::min(snap.width, snap.height)) break;
+      const ScaleError e = estimate_error(in, r, k);
+      rec["estimated_mse"].push_back({{"scale_px", k},
+                                      {"raw", e.raw_mse},
+                                      {"denoised", e.denoised_mse},
+                                      {"denoised_bias2", e.denoised_bias2},
+                                      {"denoised_better", e.denoised_better()}});
+      char part[64];
+      std::snprintf(part, sizeof part, " %d px %.2g", k, e.raw_mse > 0 ? e.denoised_mse / e.raw_mse : 0.0);
+      line += part;
+    }
+    std::printf("denoised (%s filter): estimated error over the raw image's,%s -> %s\n", filter,
+                line.c_str(), printable(o.out_denoised).c_str());
+  }
+  const std::string ext = lower_extension(o.out_denoised);
+  if (ext == ".png") {
+    write_png(o.out_denoised, img);
+  } else {
+    ImageAttributes a = render_attributes(o, scene, snap);
+    a.emplace_back("whisker.image", std::string("denoised (") + rec["filter"].get<std::string>() +
+                                        "), not the raw estimate; the stats give its estimated error");
+    write_float_image(o.out_denoised, o.display_units ? display_referred(img) : img, a);
+  }
+  return rec.dump();
+}
+
 // The images, the summary line and the stats of a finished render.
 int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, int threads) {
   const bool exact = deterministic_estimate(scene);
@@ -111,6 +166,11 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   }
   if (!o.out_sum.empty()) {
     write_accumulation(o.out_sum, accumulation_of(snap, o.plan.start.first_sample, o.plan.id));
+    note_written(o, ++written);
+  }
+  std::string denoised;
+  if (!o.out_denoised.empty()) {
+    denoised = write_denoised(o, scene, snap, img, threads);
     note_written(o, ++written);
   }
 
@@ -137,6 +197,7 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
                             RenderStats::JsonText{std::to_string(stands_for_spp(scene, snap))});
     if (!o.out_float.empty())
       st.extra.emplace_back("float_units", std::string(o.display_units ? "display" : "scene"));
+    if (!denoised.empty()) st.extra.emplace_back("denoised", RenderStats::JsonText{denoised});
     write_stats_json(o.stats_json, st);
     note_written(o, ++written);
   }
@@ -254,8 +315,14 @@ int run_headless(const HeadlessOptions& o) {
   note_written(o, 0);
   if (o.plan.complete()) return write_outputs(o, scene, snapshot_of(*o.plan.start.resume), o.threads);
 
+  if (!o.out_denoised.empty() && !exact && target < 2) {
+    std::fprintf(stderr, "whisker: --out-denoised needs at least 2 samples per pixel (two half "
+                         "images), got %llu\n", (unsigned long long)target);
+    return 2;
+  }
   ProgressiveRenderer renderer(o.threads);
   renderer.set_stop_when_exact(exact);
+  renderer.set_features(!o.out_denoised.empty());
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);

@@ -24,6 +24,10 @@ struct HeadlessOptions {
   // = 0, the frames x spp samples of a render from sample 0.
   ShardPlan plan;
   std::string out_sum;  // accumulation file (.exr)
+  // A denoised copy of the image (.png, .pfm or .exr; render/denoise.h),
+  // and its filter: the raw outputs stay as they are.
+  std::string out_denoised;
+  bool denoise_fast = false;
   // No --frames, --samples or --resume on the command line: a scene whose
   // estimate is deterministic (deterministic_estimate) renders one pass,
   // whatever its target (--target-spp, else its file's), and records the

@@ -33,6 +33,8 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.threads = cl.threads;
   h.out_png = cl.out_png;
   h.out_float = cl.out_float;
+  h.out_denoised = cl.out_denoised;
+  h.denoise_fast = cl.denoiser == "fast";
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
   h.progress_every = cl.progress_every;

@@ -69,6 +69,7 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
            " is more than 2^30 samples per pixel";
   const std::pair<std::string, const char*> outs[] = {
       {cl.out_png, "--out"}, {cl.out_float, "--out-float"}, {cl.stats_json, "--stats"},
+      {cl.out_denoised, "--out-denoised"},
       {cl.screenshot, "--screenshot"}, {cl.out_sum, "--out-sum"}};
   for (const auto& [path, option] : outs) {
     if (auto err = check_output(path, option); !err.empty()) return err;
@@ -112,6 +113,23 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   }
   if (cl.float_units != "scene" && cl.float_units != "display")
     return "--float-units " + cl.float_units + ": expected scene or display";
+  if (cl.denoiser != "quality" && cl.denoiser != "fast")
+    return "--denoiser " + cl.denoiser + ": expected quality or fast";
+  if (!cl.out_denoised.empty()) {
+    const auto ext = lower_extension(cl.out_denoised);
+    if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+      return "--out-denoised " + cl.out_denoised + ": must end in .png, .pfm or .exr";
+    if (ext == ".exr" && !have_exr())
+      return "--out-denoised " + cl.out_denoised + ": this build has no OpenEXR; use .pfm";
+    if (!cl.headless) return "--out-denoised needs --headless";
+    // Parts carry no feature buffers: a shard or a resumed render has none.
+    for (const auto& [set, option] : {std::pair{!cl.samples.empty(), "--samples"},
+                                      std::pair{!cl.resume.empty(), "--resume"},
+                                      std::pair{!cl.out_sum.empty(), "--out-sum"}})
+      if (set)
+        return std::string("--out-denoised with ") + option +
+               ": parts keep no feature buffers; denoise a whole render";
+  }
   if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
       cl.edit_toggle != "fresnel")
     return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
@@ -129,8 +147,8 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   if (!cl.edit_light.empty() && !parse_point(cl.edit_light))
     return "--edit-light " + cl.edit_light + ": expected three finite numbers x,y,z";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&
-      cl.out_sum.empty())
-    return "--headless needs at least one of --out, --out-float, --stats, --out-sum";
+      cl.out_sum.empty() && cl.out_denoised.empty())
+    return "--headless needs at least one of --out, --out-float, --stats, --out-sum, --out-denoised";
   if (!cl.screenshot.empty() && lower_extension(cl.screenshot) != ".png")
     return "--screenshot " + cl.screenshot + ": must end in .png";
   return {};

@@ -4,6 +4,8 @@
 #include <new>
 #include <vector>
 
+#include "render/features.h"
+
 namespace whisker {
 
 bool deterministic_estimate(const Scene& scene) {
@@ -110,6 +112,13 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
       ::new (&sampler[l]) Sampler(pixel_sampler(ctx.settings, cam, px[l], sample[l]));
     }
     camera_paths(group_ctx, cam, {px, std::size_t(n)}, sampler, path);
+    if (tile.features)
+      for (int l = 0; l < n; ++l) {
+        // From a copy of the sampler: the path draws its own numbers after.
+        Sampler choices = sampler[l];
+        const Features f = ray_features(ctx.world, ctx.settings, path[l].ray, &choices);
+        sums[std::size_t(pixel[l])].add_features(f.albedo, f.normal, f.depth, sample[l]);
+      }
     trace_paths(group_ctx, path, sampler, n);
     for (int l = 0; l < n; ++l) sums[std::size_t(pixel[l])].add(path[l].L, sample[l]);
     q0 += n;

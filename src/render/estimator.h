@@ -51,6 +51,9 @@ struct TileWork {
     PixelSum* sums = nullptr;
     bool in = false, out = false;
   } carry;
+  // The denoiser's features of each sample's camera ray (render/features.h)
+  // added beside its light (PixelSum::add_features).
+  bool features = false;
 };
 
 struct TileResult {

@@ -92,7 +92,7 @@ Image mean_image(const Snapshot& s) {
   return img;
 }
 
-void Film::reset(int width, int height) {
+void Film::reset(int width, int height, bool features) {
   width_ = width;
   height_ = height;
   const std::size_t pixels = std::size_t(width) * height;
@@ -100,6 +100,9 @@ void Film::reset(int width, int height) {
   acc_sq_.assign(pixels, 0.0);
   acc_odd_.assign(pixels, 0.0);
   halves_known_ = true;
+  features_ = features;
+  odd_rgb_.assign(features ? pixels * 3 : 0, 0.0);
+  features_sum_.assign(features ? pixels * kFeatureSums : 0, 0.0);
 }
 
 void Film::publish(Snapshot& s) const {
@@ -111,6 +114,8 @@ void Film::publish(Snapshot& s) const {
     s.odd_sum = acc_odd_;
   else
     s.odd_sum.clear();
+  s.odd_rgb = halves_known_ ? odd_rgb_ : std::vector<double>();
+  s.features = halves_known_ ? features_sum_ : std::vector<double>();
 }
 
 void Film::load(const std::vector<double>& sum, const std::vector<double>& sum_sq) {

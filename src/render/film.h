@@ -63,6 +63,12 @@ struct Snapshot {
   // two independent half images, whose difference measures the noise at any
   // scale, correlated pixels included (empty when not known: a resumed part).
   std::vector<double> odd_sum;
+  // With feature buffers (ProgressiveRenderer::set_features; empty without):
+  // the RGB sums of the odd-indexed samples (3 a pixel), and the sums of the
+  // denoiser's features of every sample and of the odd ones (kFeatureSums a
+  // pixel: albedo, normal, depth, then the same of the odd samples).
+  std::vector<double> odd_rgb;
+  std::vector<double> features;
   std::uint64_t first_sample = 0;  // index of the first sample in `sum`
   std::uint64_t spp = 0;      // samples per pixel in `sum`
   std::uint64_t generation = 0;
@@ -106,6 +112,10 @@ inline constexpr int kNoiseScales[] = {2, 4, 8, 16};
 // The mean radiance image of a snapshot.
 Image mean_image(const Snapshot& s);
 
+// Feature sums a pixel: albedo (3), normal (3), depth (1) of every sample,
+// then of the odd-indexed ones.
+inline constexpr int kFeatureSums = 14;
+
 // One pixel's samples of a pass, in arrival order; double, since a pass may
 // hold many thousands of samples per pixel.
 struct PixelSum {
@@ -113,6 +123,8 @@ struct PixelSum {
   double sum_sq = 0.0;
   double odd_sum = 0.0;       // luminance of the odd-indexed samples
   std::uint64_t dropped = 0;  // non-finite samples
+  glm::dvec3 odd_rgb{0.0};    // RGB of the odd-indexed samples (with features)
+  double features[kFeatureSums] = {};
 
   void add(const glm::vec3& c, std::uint64_t sample) {
     if (!finite_sample(c)) {
@@ -122,15 +134,32 @@ struct PixelSum {
     sum += glm::dvec3(c);
     const double y = luminance(c);
     sum_sq += y * y;
-    if (sample & 1) odd_sum += y;
+    if (sample & 1) {
+      odd_sum += y;
+      odd_rgb += glm::dvec3(c);
+    }
+  }
+  // A sample's features (render/features.h), always finite.
+  void add_features(const glm::vec3& albedo, const glm::vec3& normal, float depth,
+                    std::uint64_t sample) {
+    for (int half = 0; half < ((sample & 1) ? 2 : 1); ++half) {
+      double* f = features + 7 * half;
+      for (int c = 0; c < 3; ++c) {
+        f[c] += albedo[c];
+        f[3 + c] += normal[c];
+      }
+      f[6] += depth;
+    }
   }
 };
 
 // The accumulation of one generation; pixels are written by one thread each.
 class Film {
  public:
-  // Clears to black at the given size.
-  void reset(int width, int height);
+  // Clears to black at the given size; with `features`, the film also keeps
+  // the odd samples' RGB and the feature sums (Snapshot::odd_rgb, features).
+  void reset(int width, int height, bool features = false);
+  bool has_features() const { return features_; }
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -141,6 +170,14 @@ class Film {
     a[2] += p.sum.z;
     acc_sq_[pixel] += p.sum_sq;
     acc_odd_[pixel] += p.odd_sum;
+    if (features_) {
+      double* o = &odd_rgb_[std::size_t(pixel) * 3];
+      o[0] += p.odd_rgb.x;
+      o[1] += p.odd_rgb.y;
+      o[2] += p.odd_rgb.z;
+      double* f = &features_sum_[std::size_t(pixel) * kFeatureSums];
+      for (int k = 0; k < kFeatureSums; ++k) f[k] += p.features[k];
+    }
   }
 
   // Copies the sums into `s`.
@@ -155,6 +192,8 @@ class Film {
   std::vector<double> acc_sq_;  // luminance sums of squares
   std::vector<double> acc_odd_; // luminance sums of the odd-indexed samples
   bool halves_known_ = true;    // false once loaded from a part
+  bool features_ = false;
+  std::vector<double> odd_rgb_, features_sum_;  // with features_
 };
 
 }  // namespace whisker

@@ -314,7 +314,7 @@ bool ProgressiveRenderer::begin_pass() {
   job.preview_pass = job.quick.next_is_quick(job.spp_done);
   if (job.preview_pass) job.quick.set_up(dragging_);
   if (!job.preview_pass && job.film_stale) {
-    job.film.reset(job.width, job.height);
+    job.film.reset(job.width, job.height, features_);
     job.film_stale = false;
   }
   job.pass_cam = job.preview_pass ? &job.quick.camera(*job.cam) : job.cam.get();
@@ -402,7 +402,7 @@ void ProgressiveRenderer::run_tiles(int chunk) {
     const PathContext ctx{job.world, scene.settings, stats};
     TileWork work{{i0, i1, j0, j1}, job.sample_base + std::uint64_t(chunk * job.chunk_spp),
                   job.chunk_samples(chunk), [this] { return abandoning(); },
-                  job.light_caches.empty() ? nullptr : job.light_caches.data(), {}};
+                  job.light_caches.empty() ? nullptr : job.light_caches.data(), {}, film.has_features()};
     if (job.chunks > 1) work.carry = {job.carry.data(), chunk > 0, chunk + 1 < job.chunks};
     const TileResult r = render_tile(ctx, cam, work, film);
     if (r.abandoned) {  // the pass is dropped as a whole, never published

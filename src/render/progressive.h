@@ -104,6 +104,11 @@ class ProgressiveRenderer {
   // A generation whose estimate is deterministic (deterministic_estimate)
   // is done after its first pass, whatever its target. Off by default.
   void set_stop_when_exact(bool on) { stop_when_exact_ = on; }
+  // The generation's film also keeps the denoiser's feature buffers and
+  // the odd samples' RGB (Snapshot::features, odd_rgb), from the next
+  // generation on. Off by default: they cost a camera ray's features a
+  // sample. Set before set_scene().
+  void set_features(bool on) { features_ = on; }
 
   // Copies the latest published pass into `out` if its version differs from
   // out.version; returns whether it copied. Never waits for a pass.
@@ -139,6 +144,7 @@ class ProgressiveRenderer {
   std::atomic<bool> dragging_{false};
   std::function<void()> on_publish_;
   std::atomic<bool> stop_when_exact_{false};
+  std::atomic<bool> features_{false};
   bool low_priority_ = false;
   // pending state, guarded by pending_mutex_
   mutable std::mutex pending_mutex_;
