@@ -118,6 +118,14 @@ std::string write_denoised(const HeadlessOptions& o, const Scene& scene, const S
     rec["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // Mean squared error per block and channel against the true image, in
     // the image's units, both from the two half images (render/denoise.h).
+    // The estimate needs independent halves: Sobol points of even and odd
+    // index are stratified together (their difference overstates the noise,
+    // and the estimate reads near zero), independent numbers are not.
+    const bool independent = scene.settings.sampler == SamplerKind::Independent;
+    rec["estimate_valid"] = independent;
+    if (!independent)
+      rec["estimate_note"] = "the Sobol sampler's even and odd samples are not independent halves; "
+                             "render with --sampler independent for an estimate";
     std::string line;
     for (const int k : kDenoiseScales) {
       if (k > std::min(snap.width, snap.height)) break;
@@ -131,8 +139,13 @@ std::string write_denoised(const HeadlessOptions& o, const Scene& scene, const S
       std::snprintf(part, sizeof part, " %d px %.2g", k, e.raw_mse > 0 ? e.denoised_mse / e.raw_mse : 0.0);
       line += part;
     }
-    std::printf("denoised (%s filter): estimated error over the raw image's,%s -> %s\n", filter,
-                line.c_str(), printable(o.out_denoised).c_str());
+    if (independent)
+      std::printf("denoised (%s filter): estimated error over the raw image's,%s -> %s\n", filter,
+                  line.c_str(), printable(o.out_denoised).c_str());
+    else
+      std::printf("denoised (%s filter), no error estimate (Sobol halves are not independent; "
+                  "--sampler independent gives one) -> %s\n",
+                  filter, printable(o.out_denoised).c_str());
   }
   const std::string ext = lower_extension(o.out_denoised);
   if (ext == ".png") {

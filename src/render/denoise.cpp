@@ -99,10 +99,23 @@ DenoiseResult denoise(const DenoiseInput& in, const DenoiseOptions& options) {
   DenoiseResult out;
   out.width = in.width;
   out.height = in.height;
-  if (options.filter == DenoiseFilter::Quality)
-    denoising::regression_filter(in, threads, out.rgb_a, out.rgb_b);
-  else
-    denoising::atrous_filter(in, threads, out.rgb_a, out.rgb_b);
+  // Each half alone, its colour and its own features given as both halves:
+  // then nothing of the other half (not even its features, whose edges move
+  // with its colour's) reaches it, and estimate_error may compare the two.
+  std::vector<float> unused;
+  for (int half = 0; half < 2; ++half) {
+    DenoiseInput one = in;
+    if (half == 0) {
+      one.colour_b = in.colour_a, one.albedo_b = in.albedo_a, one.normal_b = in.normal_a, one.depth_b = in.depth_a;
+    } else {
+      one.colour_a = in.colour_b, one.albedo_a = in.albedo_b, one.normal_a = in.normal_b, one.depth_a = in.depth_b;
+    }
+    std::vector<float>& filtered = half == 0 ? out.rgb_a : out.rgb_b;
+    if (options.filter == DenoiseFilter::Quality)
+      denoising::regression_filter(one, threads, filtered, unused);
+    else
+      denoising::atrous_filter(one, threads, filtered, unused);
+  }
   out.rgb.resize(out.rgb_a.size());
   for (std::size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] = 0.5f * (out.rgb_a[k] + out.rgb_b[k]);
   error_maps(in, out);
