@@ -49,7 +49,7 @@ bool reseal(std::string& bytes, const std::string& refusal) {
   const std::size_t field = refusal.find("its header does not match") != std::string::npos ? 13 : 29;
   const std::string tag("whisker.checksum\0string\0", 24);
   const std::size_t t = bytes.find(tag);
-  if (crc.size() != 8 || t == std::string::npos || t + tag.size() + 4 + 36 > bytes.size()) return false;
+  if (crc.size() != 8 || t == std::string::npos || t + tag.size() + 4 + 37 > bytes.size()) return false;
   const std::size_t value = t + tag.size() + 4;  // after the value's 4-byte size
   if (bytes.compare(value + field, 8, crc) == 0) return false;
   bytes.replace(value + field, 8, crc);
