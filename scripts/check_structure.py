@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""Checks the source tree's shape: function and file lengths, parameter
-counts in the estimator's layer, and that each layer includes only the
-layers below it.
+"""Checks the source tree's shape: function and file lengths, and that each
+layer includes only the layers below it.
 
-    scripts/check_structure.py [--max-function N] [--max-file N] [--max-params N] [SRC_DIR]
+    scripts/check_structure.py [--max-function N] [--max-file N] [SRC_DIR]
 
-Functions in src/render take at most --max-params parameters (default 5):
-what a path shares travels in one PathContext, its state in one PathState.
+Parameter lists are not counted: a function takes what it reads, and a
+struct holds values that belong together (PathContext, PathState), not a
+bundle made to shorten one signature.
 
 Exit 0 when everything holds, 1 with one line per violation otherwise.
 Functions are found by brace matching: a '{' at namespace or class scope
@@ -60,41 +60,8 @@ def strip_comments_and_strings(text):
     return "".join(out)
 
 
-def parameter_count(decl, name):
-    """The number of parameters in the first parenthesised list after
-    `name` in a declaration (commas at depth 0 of (), <>, {}, [])."""
-    start = decl.find(name + "(") if name != "?" else decl.find("(")
-    if start < 0:
-        start = decl.find("(")
-        if start < 0:
-            return 0
-    else:
-        start += len(name)
-    depth, count, seen = 0, 0, False
-    for c in decl[start:]:
-        if c in "(<{[":
-            depth += 1
-            if depth == 1:
-                continue
-        elif c in ")>}]":
-            depth -= 1
-            if depth == 0:
-                break
-        if depth == 1:
-            if c == ",":
-                count += 1
-            elif not c.isspace():
-                seen = True
-    if not seen:
-        return 0
-    inner = decl[start + 1:]
-    if re.match(r"\s*void\s*\)", inner):
-        return 0
-    return count + 1
-
-
 def functions(text):
-    """Yields (name, first_line, line_count, parameters) of each function body."""
+    """Yields (name, first_line, line_count) of each function body."""
     code = strip_comments_and_strings(text)
     stack = []  # 'scope' (namespace/class) or ('fn', name, line) or 'block'
     decl_start = 0
@@ -114,8 +81,7 @@ def functions(text):
                 else:
                     m = re.findall(r"([~\w:]+)\s*\(", flat)
                     name = m[0] if m else "?"
-                    stack.append(("fn", name, code.count("\n", 0, i) + 1,
-                                  parameter_count(flat, name.split("::")[-1] if m else "?")))
+                    stack.append(("fn", name, code.count("\n", 0, i) + 1))
             else:
                 stack.append("block")
             decl_start = i + 1
@@ -123,7 +89,7 @@ def functions(text):
             top = stack.pop() if stack else None
             if isinstance(top, tuple):
                 end = code.count("\n", 0, i) + 1
-                yield top[1], top[2], end - top[2] + 1, top[3]
+                yield top[1], top[2], end - top[2] + 1
             if not stack or stack[-1] == "scope":
                 decl_start = i + 1
 
@@ -132,7 +98,6 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--max-function", type=int, default=100)
     ap.add_argument("--max-file", type=int, default=450)
-    ap.add_argument("--max-params", type=int, default=5)
     ap.add_argument("src", nargs="?",
                     default=str(pathlib.Path(__file__).resolve().parent.parent / "src"))
     args = ap.parse_args()
@@ -146,13 +111,10 @@ def main():
         lines = text.count("\n")
         if lines > args.max_file:
             problems.append(f"{rel}: {lines} lines (limit {args.max_file})")
-        for name, line, count, params in functions(text):
+        for name, line, count in functions(text):
             if count > args.max_function:
                 problems.append(f"{rel}:{line}: function {name} is {count} lines "
                                 f"(limit {args.max_function})")
-            if rel.parts[0] == "render" and params > args.max_params:
-                problems.append(f"{rel}:{line}: function {name} takes {params} parameters "
-                                f"(limit {args.max_params} in render/)")
         layer = rel.parts[0]
         allowed = LAYERS.get(layer)
         if allowed is None:

@@ -197,3 +197,48 @@ TEST(Features, PixelMeanFollowsTheSamplesJitteredRays) {
   EXPECT_EQ(one.normal, centre.normal);
   EXPECT_EQ(one.depth, centre.depth);
 }
+
+// The render takes its features from the path itself (PathState::features):
+// through mirrors, glass with Fresnel choices, misses and chains cut at the
+// depth limit they are those ray_features() finds for the same camera ray
+// and numbers, bit for bit, and the path's light is the same with and
+// without them.
+TEST(Features, ThePathRecordsWhatTheRayFindsAlongIt) {
+  Scene scene = tiny({ball(dvec3(-12.0, 0.0, 0.0), 9.0f, MaterialKind::Mirror),
+                      ball(dvec3(12.0, 0.0, 0.0), 9.0f, MaterialKind::Glass),
+                      ball(dvec3(0.0, 0.0, -60.0), 40.0f, MaterialKind::Diffuse, vec3(0.3f, 0.6f, 0.9f)),
+                      ball(dvec3(0.0, 0.0, 0.0), 200.0f, MaterialKind::Diffuse, vec3(0.5f))});
+  scene.camera.width = scene.camera.height = 24;
+  scene.settings.fresnel = scene.settings.aa = scene.settings.indirect = true;
+  for (int depth : {0, 1, 5}) {
+    scene.settings.max_depth = depth;
+    const World world(scene);
+    const CameraFrame cam(scene.camera);
+    PathStats stats;
+    const PathContext ctx{world, scene.settings, stats};
+    int specular_first = 0;
+    for (int i = 0; i < 24; ++i)
+      for (int j = 0; j < 24; ++j)
+        for (std::uint64_t sample = 0; sample < 3; ++sample) {
+          const Pixel px{i, j};
+          Sampler with = pixel_sampler(scene.settings, cam, px, sample);
+          Sampler without = with;
+          PathState a{camera_ray(ctx, cam, px, with)};
+          PathState b{camera_ray(ctx, cam, px, without)};
+          Sampler choices = with;
+          const Features expected = ray_features(world, scene.settings, a.ray, &choices);
+          Features got;
+          a.features = &got;
+          trace_paths(ctx, &a, &with, 1);
+          trace_paths(ctx, &b, &without, 1);
+          EXPECT_EQ(got.albedo, expected.albedo) << i << "," << j << " depth " << depth;
+          EXPECT_EQ(got.normal, expected.normal) << i << "," << j << " depth " << depth;
+          EXPECT_EQ(got.depth, expected.depth) << i << "," << j << " depth " << depth;
+          EXPECT_EQ(a.L, b.L);
+          specular_first += expected.depth > 0.0f && expected.albedo != vec3(0.3f, 0.6f, 0.9f) &&
+                            expected.albedo != vec3(0.5f);
+        }
+    // Below full depth some chains of mirrors and glass are cut short.
+    if (depth < 5) EXPECT_GT(specular_first, 0) << "no chain was cut at depth " << depth;
+  }
+}

@@ -12,8 +12,8 @@ namespace whisker {
 namespace {
 
 // SAH costs of the optimal collapse, per unit of half area: a wide node
-// visit against one packet test (measured on the cat's ray files: 0.3 to 1
-// give the same speed within noise), and the most packets of a leaf made
+// visit against one packet test (docs/PERFORMANCE.md: a flat optimum on the
+// cat's ray files), and the most packets of a leaf made
 // from an inner binary node.
 constexpr float kNodeCost = 0.5f;
 constexpr float kPacketCost = 1.0f;

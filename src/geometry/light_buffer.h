@@ -37,7 +37,7 @@ class LightBuffer {
   // `from_light`: its cell's direction, the difference of the point it
   // starts from and the light (any length; -ray.d serves too). The
   // difference is known a square root and a division before ray.d, and the
-  // occupancy branch below waits on it: 0.969 of fig 8's time (7 pairs).
+  // occupancy branch below waits on it.
   bool occluded(const Ray& ray, const vec3& from_light) const {
     const std::uint32_t c = cell_of(from_light);
     // Most cells are empty: a bit each (12 KB for the cat's 6 x 125^2) says

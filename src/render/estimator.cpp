@@ -36,7 +36,7 @@ RenderSettings cheap_settings(const RenderSettings& s) {
   q.connect = false;
   // The cheapest numbers: a quick pass is one sample per pixel, where the
   // Sobol points' stratification over a pixel's samples has little to give,
-  // and drawing them costs about 8 % of the pass on the cat.
+  // and drawing them is a noticeable part of a one-sample pass.
   q.sampler = SamplerKind::Independent;
   // Samples independent of the generation's own (which use `seed`).
   q.seed = s.seed ^ 0x9e3779b97f4a7c15ull;
@@ -112,15 +112,15 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
       ::new (&sampler[l]) Sampler(pixel_sampler(ctx.settings, cam, px[l], sample[l]));
     }
     camera_paths(group_ctx, cam, {px, std::size_t(n)}, sampler, path);
+    Features features[kLanes];
     if (tile.features)
-      for (int l = 0; l < n; ++l) {
-        // From a copy of the sampler: the path draws its own numbers after.
-        Sampler choices = sampler[l];
-        const Features f = ray_features(ctx.world, ctx.settings, path[l].ray, &choices);
-        sums[std::size_t(pixel[l])].add_features(f.albedo, f.normal, f.depth, sample[l]);
-      }
+      for (int l = 0; l < n; ++l) path[l].features = &features[l];
     trace_paths(group_ctx, path, sampler, n);
-    for (int l = 0; l < n; ++l) sums[std::size_t(pixel[l])].add(path[l].L, sample[l]);
+    for (int l = 0; l < n; ++l) {
+      PixelSum& sum = sums[std::size_t(pixel[l])];
+      if (tile.features) sum.add_features(features[l].albedo, features[l].normal, features[l].depth, sample[l]);
+      sum.add(path[l].L, sample[l]);
+    }
     q0 += n;
   }
   for (std::int64_t p = 0; p < pixels; ++p) finish_sum(tile, index(p), sums[std::size_t(p)], film, result);

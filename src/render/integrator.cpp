@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "render/direct_light.h"
+#include "render/features.h"
 #include "render/light_connect.h"
 #include "render/sampling.h"
 #include "render/scattering.h"
@@ -13,146 +14,152 @@ namespace whisker {
 
 namespace {
 
-// One hit of a path: `hit`, the closest hit of state.ray. Adds what the hit
-// gives to state.L; returns whether the path goes on, along state.ray.
-// Inlined: a call here measured 1-2 % on the defaults.
-[[gnu::always_inline]] inline bool path_step(const PathContext& ctx, PathState& state,
-                                             const Hit& hit, Sampler& sampler) {
-  const RenderSettings& settings = ctx.settings;
-  Ray& ray = state.ray;
-  vec3& beta = state.beta;
-  const Material& m = ctx.world.material(hit);
-  if (m.kind == MaterialKind::Diffuse) {
-    // A path that can carry no more light ends here (the walls' albedos
-    // are pure primaries): its light and bounce would both be multiplied
-    // by zero. It changes the time, not the estimate, and is decided
-    // before the hit record is made.
-    beta *= m.albedo;
-    if (ends_dark(settings, beta)) return false;
+// The closest hits of the paths in `live` (bit k: paths[k]); returns the
+// paths that hit something. A batch tests each sphere once for all its
+// lanes, which pays from five rays on; fewer go one by one. A path that
+// leaves the scene before a diffuse hit has no features.
+unsigned closest_hits(const PathContext& ctx, PathState* paths, unsigned live, Hit* hits) {
+  const Ray* rays[kLanes];
+  for (unsigned a = live; a; a &= a - 1) rays[__builtin_ctz(a)] = &paths[__builtin_ctz(a)].ray;
+  unsigned hit = live;
+  constexpr int kMinBatch = 5;
+  if (__builtin_popcount(live) >= kMinBatch) {
+    ctx.stats.rays += std::uint64_t(__builtin_popcount(live));
+    hit &= ctx.world.closest_batch(rays, live, hits);
+  } else {
+    for (unsigned a = live; a; a &= a - 1) {
+      const int k = __builtin_ctz(a);
+      ++ctx.stats.rays;
+      if (!ctx.world.closest(paths[k].ray, hits[k])) hit &= ~(1u << k);
+    }
   }
-  SurfaceHit h;
-  ctx.world.record(ray, hit, h);
-  if (m.kind != MaterialKind::Diffuse) state.from = {};  // no light path passes a mirror
-  if (m.kind == MaterialKind::Mirror) {
-    ray = sample_mirror(ray, h);
-    return true;
-  }
-  if (m.kind != MaterialKind::Diffuse) {  // glass, or a hollow ball's shells
-    ray = sample_glass(ray, h, m.ior, settings.fresnel, sampler);
-    return true;
-  }
-  return diffuse_vertex(ctx, ray, h, state, sampler);
+  for (unsigned a = live & ~hit; a; a &= a - 1)
+    if (Features* f = paths[__builtin_ctz(a)].features) *f = Features{};
+  return hit;
+}
+
+// The denoiser's features at the path's hit h: the distance along the
+// chain of mirrors and glass so far, the facing normal, and at the first
+// diffuse hit its albedo, after which the path records no more.
+void record_features(PathState& p, const SurfaceHit& h, const Material& m) {
+  p.features->depth = (p.depth == 0 ? 0.0f : p.features->depth) + h.t;
+  p.features->normal = FacingNormals(h, p.ray.d).ns;
+  if (m.kind != MaterialKind::Diffuse) return;
+  p.features->albedo = m.albedo;
+  p.features = nullptr;
 }
 
 }  // namespace
 
-// One path is a group of one: a single loop for both (the defaults' split
-// branches measured the same time as with a loop of their own).
 vec3 trace_path(const PathContext& ctx, PathState& state, Sampler& sampler) {
   trace_paths(ctx, &state, &sampler, 1);
   return state.L;
 }
 
+// The path, report sections 2-3: at each hit the material decides; mirrors
+// and glass turn the ray, a diffuse hit gathers the light's direct light,
+// sends a light connection, and splits or bounces. Written for up to
+// kLanes paths side by side: all the lanes' closest hits are found before
+// any is shaded, since a path's hit and its shading depend on each other
+// and the paths do not (docs/PERFORMANCE.md, "Paths side by side").
 void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, int count) {
   assert(count <= kLanes);
-  const int max_depth = ctx.settings.max_depth;
+  const RenderSettings& settings = ctx.settings;
   // depth counts hits: the camera hit plus up to max_depth more (getColor(ray, 5)).
-  unsigned live = 0;  // bit k: path k goes on
+  unsigned live = (1u << count) - 1;  // bit k: path k goes on
   for (int k = 0; k < count; ++k)
-    if (paths[k].depth <= max_depth) live |= 1u << k;
+    if (paths[k].depth > settings.max_depth) live &= ~(1u << k);
   while (live) {
-    // All the closest hits first, then all the shading: a path's hit and
-    // its shading depend on each other, the paths do not. (Shading each
-    // path right after its hit measured 3.5 % slower.)
     Hit hits[kLanes];
-    const Ray* rays[kLanes];
-    unsigned trace = 0;  // the lanes whose hit is not known yet
+    live = closest_hits(ctx, paths, live, hits);
     for (unsigned a = live; a; a &= a - 1) {
       const int k = __builtin_ctz(a);
       PathState& p = paths[k];
-      if (p.first_hit) {
-        hits[k] = *p.first_hit;
-        p.first_hit = nullptr;
+      Sampler& sampler = samplers[k];
+      const Material& m = ctx.world.material(hits[k]);
+      const bool diffuse = m.kind == MaterialKind::Diffuse;
+      auto end = [&] { live &= ~(1u << k); };
+
+      // ---- Throughput: a diffuse hit's albedo, before the hit is recorded.
+      // A path of zero throughput (the walls are pure primaries) ends here:
+      // a change of time, not of the estimate (RenderSettings::zero_cutoff).
+      if (diffuse) p.beta *= m.albedo;
+      const bool dark = diffuse && ends_dark(settings, p.beta);
+      if (dark && !p.features) {
+        end();
         continue;
       }
-      rays[k] = &p.ray;
-      trace |= 1u << k;
-    }
-    // Five or more side by side: a batch tests every sphere of the scene
-    // once for all its lanes (six for the cat's room), which pays against
-    // one call per ray from four or five rays on (fig 8's settings: batches
-    // from 2, 4, 5, 6 and 7 rays up, and none, 64 spp, 7 interleaved pairs
-    // each: 5 took 0.978 of the time of 2 and 0.959 of none, 7 0.993 of 5,
-    // 6 0.999 of 4).
-    constexpr int kMinBatch = 5;
-    if (__builtin_popcount(trace) >= kMinBatch) {
-      ctx.stats.rays += std::uint64_t(__builtin_popcount(trace));
-      live &= ~trace | ctx.world.closest_batch(rays, trace, hits);
-    } else {
-      for (unsigned a = trace; a; a &= a - 1) {
-        const int k = __builtin_ctz(a);
-        ++ctx.stats.rays;
-        if (!ctx.world.closest(paths[k].ray, hits[k])) live &= ~(1u << k);
+      SurfaceHit h;
+      ctx.world.record(p.ray, hits[k], h);
+      if (p.features) record_features(p, h, m);  // for the denoiser
+      if (dark) {
+        end();
+        continue;
       }
-    }
-    for (unsigned a = live; a; a &= a - 1) {
-      const int k = __builtin_ctz(a);
-      if (!path_step(ctx, paths[k], hits[k], samplers[k]) || ++paths[k].depth > max_depth)
-        live &= ~(1u << k);
-    }
-  }
-}
 
-DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                             const vec3& beta, const Departure& from) {
-  DirectLight out{vec3(0.0f), FacingNormals(h, in.d)};
-  const LightArrival a = direct_light(ctx.world, h, out.n, ctx.stats.rays);
-  if (!a.lit) return out;
-  if (from.cos > 0.0f)
-    out.L = beta * (a.weight * bounce_weight(from, in, h, a, light_path_start(ctx.world.light())));
-  else
-    out.L = beta * a.weight;
-  return out;
-}
+      // ---- Mirror and glass: the ray turns; glass chooses reflection or
+      // refraction by Schlick's Fresnel term when Fresnel is on. No light
+      // path passes a specular surface, so no connection weighs the next hit.
+      if (!diffuse) {
+        p.from = {};
+        p.ray = m.kind == MaterialKind::Mirror ? sample_mirror(p.ray, h)
+                                               : sample_glass(p.ray, h, m.ior, settings.fresnel, sampler);
+        if (++p.depth > settings.max_depth) end();
+        continue;
+      }
 
-bool diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h, PathState& state,
-                    Sampler& sampler) {
-  const RenderSettings& settings = ctx.settings;
-  const bool bounces = settings.indirect && state.depth != settings.max_depth;
-  // The light path is chosen first, so that a cached one is read from
-  // memory while the shadow ray and the bounces run.
-  const bool connect = settings.connect && bounces;
-  const LightPick pick =
-      connect ? pick_light_path(ctx, state.beta, sampler, hidden_sphere(in, h)) : LightPick{};
-  const DirectLight direct = add_direct_light(ctx, in, h, state.beta, state.from);
-  state.L += direct.L;
-  if (!bounces) return false;
-  const int split = split_factor(settings, state.diffuse_hits++, state.beta);
-  const Frame frame(direct.n.ns);
-  if (split > 1) {
-    vec3 sum(0.0f);
-    for (int k = 0; k < split; ++k) {
-      Sampler branch = sampler.branch(std::uint32_t(k), std::uint32_t(split));
-      PathState b{sample_diffuse(h, frame, branch), state.beta, state.depth + 1,
-                  state.diffuse_hits};
-      if (connect) b.from = departure(direct.n, b.ray.d, split, pick.scale);
-      sum += trace_path(ctx, b, branch);
+      // ---- Light connection, chosen first: the cached light vertex it
+      // picks is read from memory while the shadow ray and the bounces run.
+      const bool bounces = settings.indirect && p.depth != settings.max_depth;
+      const bool connect = settings.connect && bounces;
+      const LightPick pick =
+          connect ? pick_light_path(ctx, p.beta, sampler, hidden_sphere(p.ray, h)) : LightPick{};
+
+      // ---- Direct light from the point light (report section 2), weighed
+      // against the light path that could have found this point.
+      const FacingNormals n(h, p.ray.d);
+      const LightArrival arrival = direct_light(ctx.world, h, n, ctx.stats.rays);
+      if (arrival.lit) {
+        const float w = p.from.cos > 0.0f ? arrival.weight * bounce_weight(p.from, p.ray, h, arrival,
+                                                                           light_path_start(ctx.world.light()))
+                                          : arrival.weight;
+        p.L += p.beta * w;
+      }
+      if (!bounces) {
+        end();
+        continue;
+      }
+
+      // ---- Split: several cosine bounces leave the first diffuse hits, each
+      // a path of its own from here, and their mean is this path's indirect
+      // light (RenderSettings::split).
+      const int split = split_factor(settings, p.diffuse_hits++, p.beta);
+      const Frame frame(n.ns);
+      if (split > 1) {
+        vec3 sum(0.0f);
+        for (int b = 0; b < split; ++b) {
+          Sampler branch = sampler.branch(std::uint32_t(b), std::uint32_t(split));
+          PathState q{sample_diffuse(h, frame, branch), p.beta, p.depth + 1, p.diffuse_hits};
+          if (connect) q.from = departure(n, q.ray.d, split, pick.scale);
+          sum += trace_path(ctx, q, branch);
+        }
+        p.L = p.L + sum / float(split);
+        if (connect) p.L += light_connection(ctx, h, n, p.beta, split, pick);
+        end();
+        continue;
+      }
+
+      // ---- Bounce: one cosine-sampled direction (report section 3), the
+      // light connection made from here, and the path goes on.
+      const vec3 d = sample_cosine(frame, sampler);
+      if (connect) {
+        p.from = departure(n, d, 1, pick.scale);
+        p.L += light_connection(ctx, h, n, p.beta, 1, pick);
+      }
+      p.ray = spawn_ray(h, d);
+      if (++p.depth > settings.max_depth) end();
     }
-    state.L = state.L + sum / float(split);
-    if (connect) state.L += light_connection(ctx, {h, direct.n, state.beta, split}, pick);
-    return false;
   }
-  const vec3 d = sample_cosine(frame, sampler);
-  if (connect) {
-    state.from = departure(direct.n, d, 1, pick.scale);
-    state.L += light_connection(ctx, {h, direct.n, state.beta, 1}, pick);
-  }
-  // Last, once `in` (which may be state.ray) is read no more, and straight
-  // into the path's ray: returned in a std::optional it was copied twice,
-  // the first copy's wide loads waiting on the narrow stores that built it
-  // (0.981 of fig 8's time, 7 pairs).
-  state.ray = spawn_ray(h, d);
-  return true;
 }
 
 void camera_paths(const PathContext& ctx, const CameraFrame& cam, std::span<const Pixel> px,

@@ -26,6 +26,7 @@ struct PathStats {
 // the counters (one per thread). Samplers are per path (splitting branches
 // them), so they travel beside it.
 class LightCache;
+struct Features;
 struct PathContext {
   const World& world;
   const RenderSettings& settings;
@@ -52,15 +53,16 @@ struct Departure {
 
 // A path's state where it continues: the ray it follows (render space), its
 // throughput so far, the hits before it (`depth`), how many were diffuse,
-// and the light it has gathered. With `first_hit`, the ray's closest hit,
-// already found by the caller; `from`, the diffuse vertex the ray left.
+// and the light it has gathered; `from`, the diffuse vertex the ray left.
+// With `features` (Features{} on entry), the path writes there the
+// denoiser's features of its first diffuse hit (render/features.h).
 struct PathState {
   Ray ray;
   vec3 beta{1.0f};
   int depth = 0;
   int diffuse_hits = 0;
   vec3 L{0.0f};
-  const Hit* first_hit = nullptr;
+  Features* features = nullptr;
   Departure from{};
 };
 
@@ -109,27 +111,6 @@ void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, in
 inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
   return settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f;
 }
-
-// The point light's direct light at a recorded diffuse hit, given the
-// throughput there (the albedo in it) and the vertex the ray `in` left (for
-// the weight of light connections), and the hit's normals turned to the
-// side the ray came from: the frame of its bounces.
-struct DirectLight {
-  vec3 L{0.0f};
-  FacingNormals n;
-};
-DirectLight add_direct_light(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                             const vec3& beta, const Departure& from = {});
-
-// At the recorded diffuse hit h of ray `in`, for the path in `state` (the
-// albedo already in its beta): adds its direct light to state.L and, when
-// the path goes on, its light connection (RenderSettings::connect), and
-// either splits (the branches' mean added to state.L; the path ends:
-// returns false) or writes the one bounce the caller follows into
-// state.ray, state.from set for it, and returns true. False also where the
-// path ends. Counts the hit in state.diffuse_hits.
-bool diffuse_vertex(const PathContext& ctx, const Ray& in, const SurfaceHit& h,
-                    PathState& state, Sampler& sampler);
 
 // Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a tile's
 // samples are traced (render_tile: once a tile, as reading and writing MXCSR

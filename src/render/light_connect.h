@@ -74,15 +74,6 @@ inline float bounce_weight(const Departure& from, const Ray& in, const SurfaceHi
   return bounce_share(nA, from.light_scale * a.cos_g / (4.0f * a.d2));
 }
 
-// The vertex a light path is sent to: its hit, facing normals, throughput
-// (its albedo in it) and the number of cosine bounces that leave it.
-struct ConnectionVertex {
-  const SurfaceHit& h;
-  const FacingNormals& n;
-  const vec3& beta;
-  int bounces = 1;
-};
-
 // A vertex's light path, chosen before the vertex's other work (it draws
 // one 2D request): with the sample's light cache (light_cache.h), the entry
 // picked, already on its way into the processor's cache (prefetched:
@@ -103,8 +94,11 @@ inline std::uint32_t hidden_sphere(const Ray& in, const SurfaceHit& h) {
   return h.sphere != kNoSkip && glm::dot(in.d, h.outward) < 0.0f ? h.sphere : kNoSkip;
 }
 
-// The light path `pick` connected to x: the light it brings there, weighted
-// (see above; the throughput applied). Counts its rays.
-vec3 light_connection(const PathContext& ctx, const ConnectionVertex& x, const LightPick& pick);
+// The light path `pick` connected to the diffuse vertex x (its hit, facing
+// normals and throughput, the albedo in it, with `bounces` cosine bounces
+// leaving it): the light it brings there, weighted (see above; the
+// throughput applied). Counts its rays.
+vec3 light_connection(const PathContext& ctx, const SurfaceHit& x, const FacingNormals& n,
+                      const vec3& beta, int bounces, const LightPick& pick);
 
 }  // namespace whisker
