@@ -11,7 +11,6 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/mesh.h"
-#include "render/estimator.h"
 #include "render/integrator.h"
 #include "render/progressive.h"
 #include "render/splitting.h"

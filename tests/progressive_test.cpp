@@ -6,7 +6,7 @@
 #include <chrono>
 #include <thread>
 
-#include "render/estimator.h"
+#include "render/integrator.h"
 #include "render/light_cache.h"
 #include "render/progressive.h"
 #include "render/quick_passes.h"

@@ -6,11 +6,14 @@
 #pragma once
 
 #include <cstdint>
+#include <atomic>
 #include <span>
 
 #include <xmmintrin.h>
 
 #include "render/camera.h"
+#include "render/film.h"
+#include "render/light_cache.h"
 #include "render/sampler.h"
 #include "render/scattering.h"
 #include "scene/scene.h"
@@ -111,6 +114,47 @@ void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, in
 inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
   return settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f;
 }
+
+// ---- the pixel loop: a tile of a pass ------------------------------------
+
+// A block of pixels: rows [i0, i1), columns [j0, j1).
+struct PixelBlock {
+  int i0 = 0, i1 = 0, j0 = 0, j1 = 0;
+};
+
+// A tile's pixels and the pass's samples of each: numbers first_sample to
+// first_sample + spp - 1. `cancel`, read before every group of kLanes
+// paths, says the pass is being dropped (a stop or an edit): a tile of a
+// pass of 65536 samples takes minutes, and a stop must not wait for it.
+struct TileWork {
+  PixelBlock pixels;
+  std::uint64_t first_sample = 0;
+  int spp = 0;
+  const std::atomic<bool>* cancel = nullptr;
+  // Light connections' caches of samples first_sample.. (light_cache.h), or
+  // null: no connections are made.
+  const LightCache* light_caches = nullptr;
+  // A pass in chunks of samples: each pixel's sums (indexed by i * width +
+  // j) start from `sums` when `in` (else from zero) and are left there when
+  // `out` (else added to the film), so the film gets the pass's sums as if
+  // its samples had run in one chunk, bit for bit.
+  struct Carry {
+    PixelSum* sums = nullptr;
+    bool in = false, out = false;
+  } carry;
+  // The denoiser's features of each sample's camera ray (render/features.h)
+  // added beside its light (PixelSum::add_features).
+  bool features = false;
+};
+
+struct TileResult {
+  std::uint64_t dropped = 0;  // samples not finite
+  bool abandoned = false;     // stopped early: the film holds part of the tile
+};
+
+// Adds the tile's samples to the film.
+TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const TileWork& tile,
+                       Film& film);
 
 // Denormal floats flushed to zero (FTZ: results; DAZ: inputs) while a tile's
 // samples are traced (render_tile: once a tile, as reading and writing MXCSR

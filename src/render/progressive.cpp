@@ -16,7 +16,7 @@
 
 #include "scene/world.h"
 #include "render/camera.h"
-#include "render/estimator.h"
+#include "render/integrator.h"
 #include "render/quick_passes.h"
 #include "render/sampler.h"
 
@@ -75,25 +75,23 @@ ProgressiveRenderer::ProgressiveRenderer(int threads) {
 
 ProgressiveRenderer::~ProgressiveRenderer() { stop(); }
 
-std::uint64_t ProgressiveRenderer::set_scene(const Scene& scene) {
-  return set_scene(scene, RenderStart{});
-}
-
 std::uint64_t ProgressiveRenderer::set_scene(const Scene& scene, RenderStart start) {
   std::lock_guard lock(pending_mutex_);
   pending_scene_ = scene;
   pending_start_ = std::move(start);
-  ++pending_generation_;
-  pending_cv_.notify_all();
-  return pending_generation_;
+  return new_generation();
 }
 
 std::uint64_t ProgressiveRenderer::set_settings(const RenderSettings& settings) {
   std::lock_guard lock(pending_mutex_);
   pending_scene_.settings = settings;
-  ++pending_generation_;
+  return new_generation();
+}
+
+std::uint64_t ProgressiveRenderer::new_generation() {
+  cancel_ = true;
   pending_cv_.notify_all();
-  return pending_generation_;
+  return ++pending_generation_;
 }
 
 void ProgressiveRenderer::set_target_spp(int target_spp) {
@@ -112,12 +110,8 @@ void ProgressiveRenderer::set_target_spp(int target_spp) {
 }
 
 ProgressiveRenderer::PassProgress ProgressiveRenderer::pass_progress() const {
-  PassProgress p;
-  p.generation = progress_generation_.load();
-  p.tiles_done = progress_tiles_done_.load();
-  p.tiles_total = progress_tiles_total_.load();
-  p.pass_spp = progress_spp_.load();
-  p.rendering = progress_running_.load();
+  PassProgress p{progress_generation_.load(), progress_tiles_done_.load(), progress_tiles_total_.load(),
+                 progress_spp_.load(), 0.0, progress_running_.load()};
   const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
                                Clock::now().time_since_epoch()).count();
   p.pass_seconds = p.rendering ? double(now - progress_start_ns_.load()) * 1e-9 : 0.0;
@@ -160,6 +154,7 @@ void ProgressiveRenderer::stop() {
   {
     std::lock_guard lock(pending_mutex_);
     quit_ = true;
+    cancel_ = true;
     pending_cv_.notify_all();
   }
   for (auto& t : pool_) t.join();
@@ -287,29 +282,50 @@ bool ProgressiveRenderer::begin_pass() {
     pending_cv_.wait(lock);
   }
   if (pending_generation_ != job.generation) {
-    // Adopt the new generation: everything accumulated so far is thrown away.
     job.scene = pending_scene_;
     job.generation = pending_generation_;
+    cancel_ = false;  // set again by the next edit or stop
     const RenderStart start = pending_start_;
     lock.unlock();
-    // Spheres and materials are rebuilt (cheap); the BVH is reused when the
-    // meshes and the accel kind are the same.
-    job.world = World(job.scene, &job.world);
-    job.cam = std::make_unique<CameraFrame>(job.scene.camera);
-    job.width = job.scene.camera.width;
-    job.height = job.scene.camera.height;
-    job.spp_done = 0;
-    job.counters = {};
-    job.preview_pass = false;
-    job.exact = deterministic_estimate(job.scene);
-    // The film is cleared when the generation's own first pass begins: a
-    // drag adopts a generation per quick pass and may never reach one.
-    job.film_stale = true;
-    job.quick.begin_generation(job.scene, preview_enabled_ && !start.resume);
-    adopt_start(start);
+    adopt_generation(start);
   } else {
     lock.unlock();
   }
+  plan_pass();
+  return true;
+}
+
+void ProgressiveRenderer::adopt_generation(const RenderStart& start) {
+  // Everything accumulated so far is thrown away. Spheres and materials are
+  // rebuilt (cheap); the BVH is reused when the meshes and the accel kind
+  // are the same.
+  Job& job = *job_;
+  job.world = World(job.scene, &job.world);
+  job.cam = std::make_unique<CameraFrame>(job.scene.camera);
+  job.width = job.scene.camera.width;
+  job.height = job.scene.camera.height;
+  job.spp_done = 0;
+  job.counters = {};
+  job.preview_pass = false;
+  job.exact = deterministic_estimate(job.scene);
+  // The film is cleared when the generation's own first pass begins: a
+  // drag adopts a generation per quick pass and may never reach one.
+  job.film_stale = true;
+  job.quick.begin_generation(job.scene, preview_enabled_ && !start.resume);
+  job.first_sample = start.first_sample;
+  if (!start.resume) return;
+  // The resumed part's sums, counters and samples, as if its passes had
+  // just run here: the next pass adds onto them exactly as it would have.
+  const Accumulation& a = *start.resume;
+  job.film.reset(job.width, job.height);
+  job.film_stale = false;
+  job.film.load(a.sum, a.sum_sq);
+  job.spp_done = a.samples();
+  job.counters = a.counters;
+}
+
+void ProgressiveRenderer::plan_pass() {
+  Job& job = *job_;
   // Quick passes first, then the generation's own.
   job.preview_pass = job.quick.next_is_quick(job.spp_done);
   if (job.preview_pass) job.quick.set_up(dragging_);
@@ -345,29 +361,13 @@ bool ProgressiveRenderer::begin_pass() {
   progress_start_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
                            job.pass_start.time_since_epoch()).count();
   progress_running_ = true;
-  return true;
 }
 
-void ProgressiveRenderer::adopt_start(const RenderStart& start) {
-  Job& job = *job_;
-  job.first_sample = start.first_sample;
-  if (!start.resume) return;
-  // The resumed part's sums, counters and samples, as if its passes had
-  // just run here: the next pass adds onto them exactly as it would have.
-  const Accumulation& a = *start.resume;
-  job.film.reset(job.width, job.height);
-  job.film_stale = false;
-  job.film.load(a.sum, a.sum_sq);
-  job.spp_done = a.samples();
-  job.counters = a.counters;
-}
-
-bool ProgressiveRenderer::abandoning() const {
+const std::atomic<bool>& ProgressiveRenderer::cancel_flag() const {
   // A quick pass runs to its end (a drag shows each one), but a stop ends it.
-  return quit_.load(std::memory_order_relaxed) ||
-         (!job_->preview_pass &&
-          pending_generation_.load(std::memory_order_relaxed) != job_->generation);
+  return job_->preview_pass ? quit_ : cancel_;
 }
+
 
 void ProgressiveRenderer::build_light_caches(int chunk) {
   Job& job = *job_;
@@ -376,7 +376,7 @@ void ProgressiveRenderer::build_light_caches(int chunk) {
   for (;;) {
     const int k = job.next_cache.fetch_add(1, std::memory_order_relaxed);
     if (k >= job.chunk_samples(chunk)) break;
-    if (abandoning()) job.aborted = true;  // no tile may run on a cache never built
+    if (cancel_flag().load(std::memory_order_relaxed)) job.aborted = true;  // no tile may run on a cache never built
     if (job.aborted) break;
     job.light_caches[std::size_t(k)].build(job.world, job.scene.settings, first + std::uint64_t(k), rays);
   }
@@ -390,7 +390,7 @@ void ProgressiveRenderer::run_tiles(int chunk) {
     const int tile = job.next_tile.fetch_add(1, std::memory_order_relaxed);
     if (tile >= tiles) break;
     // An edit or a stop abandons the pass; its partial sums are discarded.
-    if (abandoning()) job.aborted = true;
+    if (cancel_flag().load(std::memory_order_relaxed)) job.aborted = true;
     if (job.aborted) break;
     const int ty = tile / job.pass_tiles_x, tx = tile % job.pass_tiles_x;
     const int i0 = ty * kTile, j0 = tx * kTile;
@@ -401,7 +401,7 @@ void ProgressiveRenderer::run_tiles(int chunk) {
     Film& film = job.preview_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
     TileWork work{{i0, i1, j0, j1}, job.sample_base + std::uint64_t(chunk * job.chunk_spp),
-                  job.chunk_samples(chunk), [this] { return abandoning(); },
+                  job.chunk_samples(chunk), &cancel_flag(),
                   job.light_caches.empty() ? nullptr : job.light_caches.data(), {}, film.has_features()};
     if (job.chunks > 1) work.carry = {job.carry.data(), chunk > 0, chunk + 1 < job.chunks};
     const TileResult r = render_tile(ctx, cam, work, film);

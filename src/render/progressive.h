@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "render/accumulation.h"
-#include "render/estimator.h"
 #include "render/film.h"
 #include "scene/scene.h"
 
@@ -41,9 +40,8 @@ class ProgressiveRenderer {
   // Adopt a scene and its settings at the next pass boundary: the buffer is
   // cleared and samples of older generations are thrown away. Returns the new
   // generation number. Thread-safe.
-  std::uint64_t set_scene(const Scene& scene);
-  // Same, starting at `start` instead of sample 0 with an empty film.
-  std::uint64_t set_scene(const Scene& scene, RenderStart start);
+  // With `start`, from there instead of sample 0 with an empty film.
+  std::uint64_t set_scene(const Scene& scene, RenderStart start = {});
   // Same, for settings-only edits. (A scene whose meshes are the same
   // objects, and the same accel kind, reuses the BVH either way.)
   std::uint64_t set_settings(const RenderSettings& settings);
@@ -129,11 +127,14 @@ class ProgressiveRenderer {
   struct Job;
   void worker_main(int index);
   bool begin_pass();   // thread 0 only: adopt settings, pause; false = quit
+  void adopt_generation(const RenderStart& start);  // thread 0: a new scene or settings
+  void plan_pass();    // thread 0: the pass's camera, samples, chunks and counters
   void build_light_caches(int chunk);     // all threads: the chunk's light caches
   void run_tiles(int chunk);
-  bool abandoning() const;  // a stop or an edit: the pass in flight is dropped
+  // Set when the pass in flight is to be dropped (a stop, or an edit).
+  const std::atomic<bool>& cancel_flag() const;
   void end_pass();     // thread 0 only: merge and publish
-  void adopt_start(const RenderStart& start);  // thread 0, at adoption
+  std::uint64_t new_generation();  // pending_mutex_ held: after an edit
 
   int threads_ = 1;
   std::vector<std::thread> pool_;
@@ -155,6 +156,10 @@ class ProgressiveRenderer {
   // between tiles without taking the lock.
   std::atomic<std::uint64_t> pending_generation_{0};
   std::atomic<bool> quit_{false};
+  // Set by an edit (set_scene, set_settings) and by stop(), cleared when a
+  // pass adopts the newest generation: the generation's own passes stop at
+  // it; quick passes read quit_ alone.
+  std::atomic<bool> cancel_{false};
   std::string failure_;  // guarded by pending_mutex_
   // published snapshot, guarded by publish_mutex_
   mutable std::mutex publish_mutex_;

@@ -3,9 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/estimator.h"
 
 namespace whisker {
+
+bool cheap_differs(const RenderSettings& s) {
+  if (s.spp > 1) return true;
+  if (!s.indirect) return false;  // splitting acts on indirect paths only
+  for (int f : s.split)
+    if (f > 1) return true;
+  return false;
+}
+
+RenderSettings cheap_settings(const RenderSettings& s) {
+  RenderSettings q = s;
+  q.spp = 1;
+  q.split = {1};
+  q.split_weights = vec3(1.0f);
+  // Light connections need the light cache a quick pass does not build.
+  q.connect = false;
+  // The cheapest numbers: a quick pass is one sample per pixel, where the
+  // Sobol points' stratification over a pixel's samples has little to give,
+  // and drawing them is a noticeable part of a one-sample pass.
+  q.sampler = SamplerKind::Independent;
+  // Samples independent of the generation's own (which use `seed`).
+  q.seed = s.seed ^ 0x9e3779b97f4a7c15ull;
+  return q;
+}
 
 int QuickPasses::drag_stride(double full_pass_seconds, int width, int height) {
   // A pass's time goes with its pixel count, 1 / stride^2.

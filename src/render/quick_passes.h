@@ -1,6 +1,5 @@
 // The viewer's quick passes (ProgressiveRenderer::set_preview): for the first
-// moments of every new generation, cheap passes (estimator.h:
-// cheap_settings) into a film of their own, so that an edit shows at once.
+// moments of every new generation, cheap passes (cheap_settings) into a film of their own, so that an edit shows at once.
 // They never touch the generation's own accumulation.
 #pragma once
 
@@ -12,6 +11,13 @@
 #include "scene/scene.h"
 
 namespace whisker {
+
+// The cheap estimator, for the first moments after an edit: the same paths
+// at one sample per pass, one path per sample (no splitting), with
+// its own seed so its samples are independent of the settings' own.
+RenderSettings cheap_settings(const RenderSettings& s);
+// Whether the cheap estimator differs from the settings' own.
+bool cheap_differs(const RenderSettings& s);
 
 class QuickPasses {
  public:

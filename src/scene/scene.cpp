@@ -31,4 +31,17 @@ vec3 camera_right(const Camera& camera, const vec3& forward) {
   return unit_or_zero(glm::cross(forward, pow2_scaled(camera.up)));
 }
 
+bool has_glass(const Scene& scene) {
+  for (const SphereObject& sp : scene.spheres)
+    if (is_glass(sp.material.kind)) return true;
+  for (const MeshObject& m : scene.meshes)
+    if (is_glass(m.material.kind)) return true;
+  return false;
+}
+
+bool deterministic_estimate(const Scene& scene) {
+  const RenderSettings& s = scene.settings;
+  return !s.indirect && !s.aa && !(s.fresnel && has_glass(scene));
+}
+
 }  // namespace whisker

@@ -91,6 +91,14 @@ struct Scene {
 
 std::span<const EnumName<MaterialKind>> enum_names(MaterialKind);
 
+// Whether a sphere or mesh of the scene is glass (solid or hollow).
+bool has_glass(const Scene& scene);
+
+// Whether every pass of `scene` gives the same image: no indirect light, no
+// anti-aliasing jitter, no Fresnel choice at glass (off, or no glass), and the
+// one point light. Its render is exact after one pass.
+bool deterministic_estimate(const Scene& scene);
+
 // The largest coordinate a scene position may have (scene files, --light).
 // Render space is relative to the camera (world.h), so what limits this is
 // the distance across the scene in float, not the offset from the origin.
