@@ -13,8 +13,8 @@
 # Error without a reference image: two renders with independent seeds a and
 # b of an unbiased estimator have E|a - b|^2 = MSE_a + MSE_b, so the MSE of
 # one render is half the MSE between the two, at each scale (whisker-compare
-# box-filters both images by k before the MSE, with the convergence study's
-# white point).
+# box-filters both images by k before the MSE, in units of the report's
+# display white, 255^2.2).
 #
 # 1. The report's program (built from its source, its two bugs mended so that
 #    it converges to Whisker's image; bench/report_program.sh) at REPORT_SPP

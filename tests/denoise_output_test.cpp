@@ -16,6 +16,7 @@
 #include "io/image_io.h"
 #include "run_whisker.h"
 #include "sanitized.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -25,10 +26,6 @@ namespace {
 class DenoiseOutput : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("whisker-dnout-" + std::to_string(::getpid()) + "-" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
     // The report's indirect room at 64 x 64: diffuse bounces, noise to remove.
     std::ifstream in(fs::path(WHISKER_ASSETS_DIR) / "scenes" / "indirect.json");
     nlohmann::json j = nlohmann::json::parse(in);
@@ -37,13 +34,13 @@ class DenoiseOutput : public ::testing::Test {
     scene = (dir / "room.json").string();
     std::ofstream(scene) << j.dump(2);
   }
-  void TearDown() override { fs::remove_all(dir); }
   std::string f(const std::string& name) const { return (dir / name).string(); }
   Result render(const std::string& args) {
     return run("--headless --quiet --threads 2 --scene " + scene + " " + args);
   }
 
-  fs::path dir;
+  TempDir temp{"dnout"};
+  const fs::path dir = temp.path();
   std::string scene;
 };
 

@@ -1,7 +1,8 @@
 // The film (render/film.h): its noise figures (the pixel figure from the
 // sums of squares, the scale figures from the two half images, and the
 // figure the stats and the viewer show, which must not read low when pixels
-// share their errors), and pixel sums that drop non-finite samples.
+// share their errors, nor overflow or underflow at extreme intensities),
+// and pixel sums that drop non-finite samples.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -128,6 +129,37 @@ TEST(Film, NonFiniteSamplesAreDroppedAndCountedAndLuminanceIsRec709) {
   const Image img = mean_image(s);
   EXPECT_EQ(img.width, 2);
   EXPECT_EQ(img.rgb, std::vector<float>({0, 0, 0, 1, 1, 2}));
+}
+
+
+TEST(Film, RelativeStandardErrorIsFiniteAndScaleInvariant) {
+  // Two pixels, four samples each, scaled by 1, 1e30 and 1e-30: squares of
+  // 1e30 overflow float and squares of 1e-30 underflow it.
+  const auto snapshot = [](double k) {
+    Snapshot s;
+    s.width = 2;
+    s.height = 1;
+    s.spp = 4;
+    const double samples[2][4] = {{1, 2, 3, 4}, {0.5, 0.5, 1.5, 2.5}};
+    for (const auto& px : samples) {
+      double sum = 0, sq = 0;
+      for (double v : px) {
+        sum += v * k;
+        sq += (v * k) * (v * k);
+      }
+      for (int c = 0; c < 3; ++c) s.sum.push_back(float(sum));
+      s.sum_sq.push_back(sq);
+    }
+    return s;
+  };
+  const double e1 = snapshot(1).relative_standard_error();
+  // By hand: variances of the mean (5/3)/4 and (11/12)/4, mean of means 1.875.
+  EXPECT_NEAR(e1, std::sqrt((20.0 / 48 + 11.0 / 48) / 2) / 1.875, 1e-6);
+  for (double k : {1e30, 1e-30}) {
+    const double e = snapshot(k).relative_standard_error();
+    EXPECT_TRUE(std::isfinite(e)) << k;
+    EXPECT_NEAR(e, e1, 1e-5 * e1) << k;
+  }
 }
 
 }  // namespace

@@ -14,17 +14,12 @@
 #include "io/image_io.h"
 #include "scene/settings.h"
 #include "run_whisker.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
 
 namespace {
-
-fs::path temp_dir() {
-  const fs::path d = fs::temp_directory_path() / ("whisker-e2e-" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
 
 // Reads back the 8-bit PNG through the PNG's own header: width and height.
 std::pair<int, int> png_size(const fs::path& p) {
@@ -39,7 +34,8 @@ std::pair<int, int> png_size(const fs::path& p) {
 }  // namespace
 
 TEST(Headless, EverySphereSceneWritesPngFloatImageAndStats) {
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   for (const char* name : {"diffuse-ball", "three-balls", "three-balls-fresnel", "indirect",
                            "antialiased-ball"}) {
     const fs::path png = dir / (std::string(name) + ".png");
@@ -66,14 +62,14 @@ TEST(Headless, EverySphereSceneWritesPngFloatImageAndStats) {
   // No temporary files are left behind.
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
-  fs::remove_all(dir);
 }
 
 TEST(Headless, SplitWeightsReachTheRendererAndTheStats) {
   // The indirect scene (split 4,4 by default): weights of 0.25 make every
   // split round(4 * 0.25) = 1, so a sample traces fewer rays; the stats
   // record the weights used.
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   auto rays = [&](const std::string& extra, nlohmann::json& j) {
     const fs::path stats = dir / "s.json";
     const Result r = run("--headless --quiet --scene indirect --frames 1 --spp 1 --seed 3 --out-float " +
@@ -94,11 +90,11 @@ TEST(Headless, SplitWeightsReachTheRendererAndTheStats) {
     EXPECT_TRUE(plain["settings"].contains(f.key)) << f.key;
   EXPECT_EQ(plain["settings"]["split"], nlohmann::json({4, 4}));
   EXPECT_EQ(plain["settings"]["sampler"], "sobol");
-  fs::remove_all(dir);
 }
 
 TEST(Headless, PngFollowsTheReportsMapping) {
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   const Result r = run("--headless --quiet --scene diffuse-ball --out " + (dir / "a.png").string() +
                        " --out-float " + (dir / "a.pfm").string());
   ASSERT_EQ(r.code, 0) << r.output;
@@ -106,12 +102,12 @@ TEST(Headless, PngFollowsTheReportsMapping) {
   EXPECT_EQ(to_srgb8(std::pow(100.0f, 2.2f)), 99);  // float rounding just below 100
   EXPECT_EQ(to_srgb8(std::pow(255.0f, 2.2f) * 2), 255);
   EXPECT_EQ(to_srgb8(std::pow(100.5f, 2.2f)), 100);
-  fs::remove_all(dir);
 }
 
 TEST(Headless, OpenExrWhenBuiltWithIt) {
   if (!have_exr()) GTEST_SKIP() << "built without OpenEXR";
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   const fs::path exr = dir / "a.exr";
   const Result r = run("--headless --quiet --scene diffuse-ball --out-float " + exr.string());
   ASSERT_EQ(r.code, 0) << r.output;
@@ -128,11 +124,11 @@ TEST(Headless, OpenExrWhenBuiltWithIt) {
   EXPECT_NE(header.find("channels"), std::string::npos);
   EXPECT_NE(header.find("dataWindow"), std::string::npos);
   EXPECT_GT(fs::file_size(exr), 100000u);  // compressed float data, not an empty shell
-  fs::remove_all(dir);
 }
 
 TEST(Headless, BadInputExitsTwoWithAMessage) {
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   const std::string out = " --out " + (dir / "x.png").string();
   struct Case { std::string args; std::string expect; };
   std::ofstream(dir / "broken.json") << "{\"spheres\": [ {\"radius\": 3 }";
@@ -165,13 +161,13 @@ TEST(Headless, BadInputExitsTwoWithAMessage) {
     EXPECT_EQ(r.output.find("terminate"), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(dir / "x.png"));
-  fs::remove_all(dir);
 }
 
 TEST(Headless, CommandLineOverridesTheScene) {
   // Moving the light with --light changes the image; the same command twice
   // gives the same bytes (determinism end to end).
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   auto render = [&](const std::string& extra, const std::string& file) {
     const Result r = run("--headless --quiet --scene diffuse-ball --out-float " + (dir / file).string() + extra);
     EXPECT_EQ(r.code, 0) << r.output;
@@ -182,7 +178,6 @@ TEST(Headless, CommandLineOverridesTheScene) {
   const auto c = render(" --threads 1", "c.pfm");
   EXPECT_NE(a, b);
   EXPECT_EQ(a, c);
-  fs::remove_all(dir);
 }
 
 TEST(Headless, AnExactEstimateRendersOnePassWhateverItsTargetSpp) {
@@ -190,7 +185,8 @@ TEST(Headless, AnExactEstimateRendersOnePassWhateverItsTargetSpp) {
   // same image, so --target-spp 64 renders one pass (as the viewer stops
   // after one), says so on stderr once, and records what the pass stands
   // for; its image is that of --frames 1, bit for bit.
-  const fs::path dir = temp_dir();
+  const TempDir temp("e2e");
+  const fs::path& dir = temp.path();
   const std::string base =
       "--headless --quiet --scene diffuse-ball --indirect off --aa off --fresnel off --spp 1 ";
   const fs::path one = dir / "one.pfm", asked = dir / "asked.pfm", stats = dir / "asked.json";
@@ -213,16 +209,12 @@ TEST(Headless, AnExactEstimateRendersOnePassWhateverItsTargetSpp) {
   const std::size_t at = r.output.find(said);
   EXPECT_NE(at, std::string::npos) << r.output;
   EXPECT_EQ(r.output.find(said, at + 1), std::string::npos) << "said twice: " << r.output;
-  auto bytes = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_EQ(bytes(one), bytes(asked));
+  EXPECT_EQ(file_bytes(one), file_bytes(asked));
   // An EXR records it: "whisker.exact" and the samples it stands for.
   if (have_exr()) {
     const fs::path exr = dir / "asked.exr";
     ASSERT_EQ(run(base + "--target-spp 64 --out-float " + exr.string()).code, 0);
-    const std::string header = bytes(exr);
+    const std::string header = file_bytes(exr);
     const std::string attr = std::string("whisker.stands_for_spp\0string\0\x02\0\0\0" "64", 36);
     EXPECT_NE(header.find(attr), std::string::npos);
     EXPECT_NE(header.find(std::string("whisker.exact\0string\0\x04\0\0\0" "true", 29)),
@@ -234,5 +226,4 @@ TEST(Headless, AnExactEstimateRendersOnePassWhateverItsTargetSpp) {
   ASSERT_EQ(frames.code, 0) << frames.output;
   std::ifstream sj3(stats);
   EXPECT_EQ(nlohmann::json::parse(sj3)["passes"], 3);
-  fs::remove_all(dir);
 }

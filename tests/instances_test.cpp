@@ -22,6 +22,7 @@
 #include "scene/world.h"
 #include "directions.h"
 #include "sanitized.h"
+#include "temp_dir.h"
 
 extern char** environ;
 
@@ -85,8 +86,8 @@ TEST(Instances, AFileNamedManyTimesIsHeldOnce) {
 TEST(Instances, APlacementTakingAVertexPastFloatIsRefused) {
   // What loading each placement on its own checked: the second placement
   // (1e32 scaled by 1e7) is past float; the first is not.
-  const fs::path dir = fs::temp_directory_path() / ("whisker-far-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const TempDir temp("far");
+  const fs::path& dir = temp.path();
   std::ofstream(dir / "far.obj") << "v 0 0 0\nv 1e32 0 0\nv 0 1 0\nf 1 2 3\n";
   const std::string text = R"({"meshes": [{"path": "far.obj"}, {"path": "far.obj", "scale": 1e7}]})";
   std::string what = "(accepted)";
@@ -95,7 +96,6 @@ TEST(Instances, APlacementTakingAVertexPastFloatIsRefused) {
   } catch (const SceneError& e) {
     what = e.what();
   }
-  fs::remove_all(dir);
   EXPECT_EQ(what, "far.json: meshes[1].path: " + (dir / "far.obj").string() +
                       ": a vertex is not finite after scale/translate");
 }
@@ -213,8 +213,8 @@ TEST(Instances, EightPlacementsCostAboutWhatOneDoes) {
   // eight took 11 MB more than one (the cat's triangles, BVH and light
   // buffer, 8 times); now the placements share one copy.
   if (release_or_sanitized(0, 1)) GTEST_SKIP() << "a sanitizer's allocator keeps memory of its own";
-  const fs::path dir = fs::temp_directory_path() / ("whisker-instances-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const TempDir temp("instances");
+  const fs::path& dir = temp.path();
   const auto scene = [&](int n) {
     std::string meshes;
     for (int i = 0; i < n; ++i)
@@ -230,7 +230,6 @@ TEST(Instances, EightPlacementsCostAboutWhatOneDoes) {
                     "--quiet", "--out", (dir / "out.png").string()});
   };
   const long one = run(1), eight = run(8);
-  fs::remove_all(dir);
   ASSERT_GT(one, 0);
   ASSERT_GT(eight, 0);
   EXPECT_LT(eight, one + 1024) << "one cat: " << one << " kB, eight: " << eight << " kB";

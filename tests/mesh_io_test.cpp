@@ -11,6 +11,7 @@
 #include <glm/common.hpp>
 
 #include "scene/mesh_io.h"
+#include "temp_dir.h"
 
 namespace whisker {
 namespace {
@@ -19,14 +20,6 @@ namespace fs = std::filesystem;
 
 class MeshIo : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("whisker_mesh_io_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string write(const std::string& name, const std::string& text) {
     const std::string p = (dir_ / name).string();
     std::ofstream(p, std::ios::binary) << text;
@@ -44,7 +37,8 @@ class MeshIo : public ::testing::Test {
     return "";
   }
 
-  fs::path dir_;
+  TempDir temp_{"mesh-io"};
+  const fs::path dir_ = temp_.path();
 };
 
 TEST_F(MeshIo, LoadsTheCatWithAWarningForItsMissingMaterialLibrary) {
@@ -195,7 +189,7 @@ TEST_F(MeshIo, FitUsesOnlyTheVerticesOfFacesWithAnArea) {
   const glm::dvec3 size(40.0, 28.0, 40.0), base(0.0, -10.0, 0.0);
   const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
   // (-3e38 x 28 is no float: a vertex no face uses is not kept.)
-  for (const std::string& extra :
+  for (const std::string extra :
        {"v 1e30 1e30 1e30\nf 1 2 3\n", "v 1e7 1e7 1e7\nf 1 2 3\n", "v -3e38 0 0\nf 1 2 3\n",
         "v 1e7 0 0\nf 1 2 3\nf 4 4 1\n", "f 1 2 3\n"}) {
     const ObjFile obj = read_obj(write("far.obj", tri + extra));

@@ -9,7 +9,6 @@
 #include "render/integrator.h"
 #include "render/light_cache.h"
 #include "render/progressive.h"
-#include "render/quick_passes.h"
 #include "scene/scene_io.h"
 #include "scene/world.h"
 #include "render_util.h"
@@ -200,31 +199,6 @@ TEST(Progressive, QuickPassesWhileDraggingAreCoarseThenFullSize) {
   r.stop();
   EXPECT_EQ(own.stride, 1);
   EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
-}
-
-TEST(QuickPasses, DragStrideBringsAPassUnderItsAim) {
-  EXPECT_EQ(QuickPasses::drag_stride(0.0, 512, 512), 2);    // not timed yet
-  EXPECT_EQ(QuickPasses::drag_stride(0.015, 512, 512), 1);  // already fast enough
-  EXPECT_EQ(QuickPasses::drag_stride(0.07, 512, 512), 2);   // 70 ms / 4 = 17.5 ms
-  EXPECT_EQ(QuickPasses::drag_stride(0.2, 512, 512), 4);    // 200 ms / 16 = 12.5 ms
-  EXPECT_EQ(QuickPasses::drag_stride(5.0, 512, 512), 4);    // at most 4
-  EXPECT_EQ(QuickPasses::drag_stride(0.2, 510, 510), 3);    // 4 does not divide 510
-  EXPECT_EQ(QuickPasses::drag_stride(0.2, 511, 512), 1);    // nothing divides 511 and 512
-}
-
-TEST(Progressive, QuickPassesOnlyWhenTheyAreCheaper) {
-  RenderSettings s;
-  s.indirect = false;
-  s.spp = 1;
-  s.split = {4, 4};
-  EXPECT_FALSE(cheap_differs(s));  // splitting needs indirect light
-  s.spp = 4;
-  EXPECT_TRUE(cheap_differs(s));
-  s.spp = 1;
-  s.indirect = true;
-  EXPECT_TRUE(cheap_differs(s));
-  s.split = {1};
-  EXPECT_FALSE(cheap_differs(s));
 }
 
 // A deterministic estimate (no indirect light, no jitter, no Fresnel choice)

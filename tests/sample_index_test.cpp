@@ -16,6 +16,7 @@
 
 #include "render_util.h"
 #include "run_whisker.h"
+#include "temp_dir.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -43,10 +44,6 @@ std::vector<double> pfm_luminance(const fs::path& p) {
 class SampleIndex : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("whisker-sample-index-" + std::to_string(::getpid()) + "-" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir);
     std::ifstream in(fs::path(WHISKER_ASSETS_DIR) / "scenes" / "indirect.json");
     nlohmann::json j = nlohmann::json::parse(in);
     j["camera"]["width"] = 8;
@@ -54,8 +51,6 @@ class SampleIndex : public ::testing::Test {
     scene = dir / "room.json";
     std::ofstream(scene) << j.dump(2);
   }
-  void TearDown() override { fs::remove_all(dir); }
-
   // The red team's settings: every sample's light goes through its branches
   // (no jitter, no Fresnel choice, no light connections), 64 x 64 of them
   // whatever the colour (split weights 1), depth 2 so both levels split.
@@ -66,7 +61,9 @@ class SampleIndex : public ::testing::Test {
   }
   std::string f(const std::string& name) const { return (dir / name).string(); }
 
-  fs::path dir, scene;
+  TempDir temp{"sample-index"};
+  const fs::path dir = temp.path();
+  fs::path scene;
 };
 
 }  // namespace

@@ -6,16 +6,12 @@
 
 #include <fstream>
 #include <iterator>
-#include <map>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include "geometry/mesh.h"
-#include "render/splitting.h"
 #include "scene/scene_io.h"
-
-#include <unistd.h>
+#include "temp_dir.h"
 
 using namespace whisker;
 
@@ -109,21 +105,6 @@ TEST(SceneFiles, FloatsAreWrittenByTheirShortestDigits) {
   EXPECT_EQ(b.camera.fov_deg, 37.3f);
 }
 
-TEST(Split, WeightsScaleByTheMostWeightedCarriedChannel) {
-  const vec3 w(1.0f, 0.5f, 0.25f);
-  EXPECT_EQ(weighted_split(4, vec3(1, 1, 1), w), 4);        // white: the largest weight
-  EXPECT_EQ(weighted_split(4, vec3(0, 1, 0), w), 2);        // green only
-  EXPECT_EQ(weighted_split(4, vec3(0, 0, 1), w), 1);        // blue only: 4 * 0.25
-  EXPECT_EQ(weighted_split(4, vec3(0, 0.3f, 0.7f), w), 2);  // cyan: green's 0.5 wins
-  EXPECT_EQ(weighted_split(2, vec3(0, 0, 1), w), 1);        // 0.5 rounds up to 1
-  EXPECT_EQ(weighted_split(3, vec3(0, 0, 1), vec3(0.01f)), 1);  // never below 1
-  EXPECT_EQ(weighted_split(6, vec3(0, 1, 0), w), 3);
-  EXPECT_EQ(weighted_split(4, vec3(1, 0, 0), vec3(1.0f)), 4);   // all 1: the plain factor
-  // The cat scene's file: paths that carry green but neither red nor blue split half.
-  const Scene cat = load_scene(resolve_scene("cat"));
-  EXPECT_EQ(cat.settings.split_weights, vec3(1.0f, 0.5f, 1.0f));
-}
-
 TEST(SceneFiles, SyntaxErrorNamesLineAndColumn) {
   const std::string e = error_of("{\n  \"name\": \"x\",\n  \"light\": {\"position\": [1, 2,, 3]}\n}");
   EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
@@ -189,79 +170,6 @@ TEST(SceneFiles, MissingFileNamesTheBundledScenes) {
   }
 }
 
-namespace {
-
-// A value other than the default for every setting, as command-line text: a
-// boolean flips; the others are listed.
-const std::map<std::string, std::string> kOtherValues = {
-    {"spp", "7"},        {"max_depth", "3"},     {"seed", "12345"},
-    {"target_spp", "99"}, {"accel", "bbox"},     {"sampler", "independent"},
-    {"split", "2,3"},    {"split_weights", "0.5,0.25,1"}};
-
-std::string other_value(const SettingField& f, const RenderSettings& defaults) {
-  if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member))
-    return defaults.*(*m) ? "off" : "on";
-  return kOtherValues.count(f.key) ? kOtherValues.at(f.key) : "";
-}
-
-}  // namespace
-
-TEST(SettingsTable, EveryFieldReachesTheFileAndBackAndCountsInEquality) {
-  Scene all = load_scene(resolve_scene("three-balls"));
-  const RenderSettings defaults = all.settings;
-  for (const SettingField& f : setting_fields()) {
-    const std::string text = other_value(f, defaults);
-    ASSERT_NE(text, "") << "no test value for setting " << f.key;
-    RenderSettings one = defaults;
-    EXPECT_EQ(set_from_text(f, text, one), "") << f.key;
-    EXPECT_NE(one, defaults) << f.key << ": not part of operator==";
-    EXPECT_EQ(set_from_text(f, text, all.settings), "") << f.key;
-  }
-  const Scene back = parse_scene(scene_to_json(all), "roundtrip.json");
-  EXPECT_EQ(back.settings, all.settings);
-  EXPECT_EQ(back.settings.split, std::vector<int>({2, 3}));
-  EXPECT_EQ(back.settings.accel, BvhMethod::BBox);
-}
-
-TEST(SettingsTable, RangesOfTheFileAndTheCommandLineComeFromTheTable) {
-  for (const SettingField& f : setting_fields()) {
-    if (!std::holds_alternative<int RenderSettings::*>(f.member)) continue;
-    const long long above = (long long)f.hi + 1;
-    const std::string e = error_of(R"({"settings": {")" + std::string(f.key) +
-                                   "\": " + std::to_string(above) + "}}");
-    EXPECT_NE(e.find("settings." + std::string(f.key) + ": must be in [" +
-                     std::to_string((long long)f.lo) + ", " + std::to_string((long long)f.hi) +
-                     "], got " + std::to_string(above)),
-              std::string::npos)
-        << e;
-    RenderSettings r;
-    const double option_hi = f.option_hi > 0 ? f.option_hi : f.hi;
-    EXPECT_EQ(set_from_text(f, std::to_string((long long)option_hi), r), "") << f.key;
-    EXPECT_NE(set_from_text(f, std::to_string((long long)option_hi + 1), r).find("must be in"),
-              std::string::npos)
-        << f.key;
-  }
-  RenderSettings r;
-  const SettingField& w = setting_field("split_weights");
-  EXPECT_EQ(w.lo, 0.01);
-  EXPECT_NE(set_from_text(w, "1,0.009,1", r).find("in [0.01, 1]"), std::string::npos);
-  EXPECT_EQ(set_from_text(w, "1,0.01,1", r), "");
-  EXPECT_EQ(r.split_weights, vec3(1.0f, 0.01f, 1.0f));
-}
-
-TEST(SettingsTable, EnumNamesRoundTrip) {
-  for (const auto& [kind, name] : enum_names(MaterialKind{})) {
-    MaterialKind k{};
-    EXPECT_TRUE(parse(name, k));
-    EXPECT_EQ(k, kind);
-    EXPECT_STREQ(to_string(kind), name);
-  }
-  EXPECT_EQ(name_list(BvhMethod{}), "brute, bbox, midpoint or sah");
-  SamplerKind s = SamplerKind::Sobol;
-  EXPECT_FALSE(parse("halton", s));
-  EXPECT_EQ(s, SamplerKind::Sobol);
-}
-
 TEST(SceneFiles, PositionsKeepTheDigitsTheFileWrote) {
   // 1000.0001 is not a float (the nearest is 1000.00012207...): the reader
   // keeps positions in double, and writing them back loses nothing.
@@ -284,8 +192,8 @@ TEST(SceneFiles, PositionsKeepTheDigitsTheFileWrote) {
 // original scene was written as "kitty.obj" and did not load).
 TEST(SceneFiles, SavedSceneFindsItsMeshesFromAnotherFolder) {
   namespace fs = std::filesystem;
-  const fs::path root = fs::temp_directory_path() / ("whisker-save-" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const TempDir temp("save");
+  const fs::path& root = temp.path();
   fs::create_directories(root / "orig");
   fs::create_directories(root / "saved" / "deeper");
   fs::copy_file(resolve_mesh("cat.obj", {}, "cat"), root / "orig" / "kitty.obj");
@@ -307,7 +215,6 @@ TEST(SceneFiles, SavedSceneFindsItsMeshesFromAnotherFolder) {
     EXPECT_EQ(fs::canonical(back.meshes[0].file), fs::canonical(root / "orig" / "kitty.obj"));
     EXPECT_EQ(back.meshes[0].mesh->positions, cat.meshes[0].mesh->positions);
   }
-  fs::remove_all(root);
 }
 
 // A mesh file named several times is one mesh in memory, its positions

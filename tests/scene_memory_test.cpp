@@ -12,6 +12,7 @@
 #include "scene/scene_memory.h"
 #include "run_whisker.h"
 #include "sanitized.h"
+#include "temp_dir.h"
 
 using namespace whisker;
 namespace fs = std::filesystem;
@@ -68,10 +69,10 @@ TEST(SceneMemory, AFilmPastTheMachineIsRefusedNamingTheNeedAndTheMemory) {
   // A side the viewer's texture cannot hold, on a film that fits.
   EXPECT_EQ(refusal(camera(20000, 100)), "bad.json: camera.width: must be in [1, 16384], got 20000");
   // The command line says it the same way, in one line, exit 2.
-  const fs::path p = fs::temp_directory_path() / ("whisker-huge-" + std::to_string(::getpid()) + ".json");
+  const TempDir temp("huge");
+  const fs::path p = temp.path() / "huge.json";
   std::ofstream(p) << camera(200000, 200000);
   const Result r = run("--headless --scene " + p.string() + " --frames 1 --out " + p.string() + ".png");
-  fs::remove(p);
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.output, "whisker: " + p.string() + ": camera.width: 200000 x 200000 pixels: the film needs " +
                           memory_text(film_bytes(200000, 200000), true) + "; this machine has " + memory + "\n");
@@ -97,7 +98,8 @@ TEST(SceneMemory, AMillionSpheresAreRead) {
 TEST(SceneMemory, AFileTooBigForTheMachineIsRefusedFromItsSize) {
   // A sparse file as large as the machine's memory: refused before a byte
   // is read (reading it needs three times its size), in no time.
-  const fs::path p = fs::temp_directory_path() / ("whisker-sparse-" + std::to_string(::getpid()) + ".json");
+  const TempDir temp("sparse");
+  const fs::path p = temp.path() / "sparse.json";
   std::ofstream(p).put('[');
   std::error_code ec;
   const std::uint64_t size = machine_memory();
@@ -111,7 +113,6 @@ TEST(SceneMemory, AFileTooBigForTheMachineIsRefusedFromItsSize) {
     what = e.what();
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  fs::remove(p);
   EXPECT_EQ(what, p.string() + ": reading a file of " + memory_text(size, false) + " needs " +
                       memory_text(3 * size, true) + "; this machine has " + memory_text(size, false));
   EXPECT_LT(seconds, 10.0);  // reading 3 x its size would take minutes

@@ -14,6 +14,7 @@
 #include "scene/scene_io.h"
 #include "viewer/readout.h"
 #include "viewer/viewer_state.h"
+#include "temp_dir.h"
 
 using namespace whisker;
 
@@ -193,14 +194,12 @@ TEST(SaveMapping, ReportMappingMatchesTheHeadlessPng) {
 
 TEST(SaveName, NeverOverwrites) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("whisker-free-stem-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const TempDir temp("free-stem");
+  const fs::path& dir = temp.path();
   const std::vector<std::string> exts = {".png", ".exr"};
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp");
   std::ofstream(dir / "cat-16spp.png") << "x";
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-2");
   std::ofstream(dir / "cat-16spp-2.exr") << "x";  // either file takes the name
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-3");
-  fs::remove_all(dir);
 }

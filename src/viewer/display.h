@@ -45,7 +45,6 @@ class Display {
   // (Snapshot::stride) are stride x stride of them.
   int width() const { return width_ * stride_; }
   int height() const { return height_ * stride_; }
-  bool has_sq() const { return sq_valid_; }
 
  private:
   void map_to_cache(float spp, const DisplayParams& p);

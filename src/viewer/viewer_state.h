@@ -93,8 +93,7 @@ struct ViewerState {
 
   std::uint64_t bar_spp = 0;  // the samples per pixel the panel's bar said last frame
 
-  // UI frame times (ms), for the panel and scripted-run summaries.
-  std::vector<float> frame_ms;
+  // The mean UI frame time (ms) of the last frames, for the panel.
   float frame_ms_avg = 0.0f;
 };
 

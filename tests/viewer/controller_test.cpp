@@ -16,10 +16,11 @@
 #include "viewer/scene_diff.h"
 #include "test_scenes.h"
 #include "render_util.h"
+#include "temp_dir.h"
 
 using namespace whisker;
 
-TEST(TargetSpp, OnlyARaiseCarriesOn) {
+TEST(TargetRaise, OnlyARaiseCarriesOn) {
   Scene a = three_balls();
   a.settings.target_spp = 16;
   Scene b = a;
@@ -42,8 +43,8 @@ TEST(TargetSpp, OnlyARaiseCarriesOn) {
 // overwrites the previous one.
 TEST(SaveScene, WritesALoadableSceneUnderAFreeName) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("whisker-save-scene-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const TempDir temp("save-scene");
+  const fs::path& dir = temp.path();
   ProgressiveRenderer r(1);
   ViewerState s;
   s.initial = s.applied = s.edited = load_scene(resolve_scene("three-balls"));
@@ -60,7 +61,6 @@ TEST(SaveScene, WritesALoadableSceneUnderAFreeName) {
   ASSERT_TRUE(fs::exists(dir / "three-balls-edited-2.json"));
   const Scene back = load_scene(dir / "three-balls-edited.json");
   EXPECT_EQ(classify_change(s.applied, back), SceneChange::None);
-  fs::remove_all(dir);
 }
 
 // With edits that could be undone, a load waits for "discard the edits?";
@@ -122,7 +122,8 @@ TEST(DropFile, SceneFilesLoadObjsReplaceMeshesOthersAreRefused) {
 
   // The OBJ replaces the cat scene's mesh: the triangle count follows it.
   namespace fs = std::filesystem;
-  const fs::path objp = fs::temp_directory_path() / ("whisker-drop-" + std::to_string(::getpid()) + ".obj");
+  const TempDir temp("drop");
+  const fs::path objp = temp.path() / "drop.obj";
   {
     std::ofstream out(objp);
     out << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n";
@@ -137,15 +138,14 @@ TEST(DropFile, SceneFilesLoadObjsReplaceMeshesOthersAreRefused) {
   EXPECT_FALSE(s.message_is_error) << s.message;
   ASSERT_EQ(s.applied.meshes.size(), 1u);
   EXPECT_EQ(s.applied.meshes[0].mesh->triangles.size(), 2u);
-  fs::remove(objp);
 }
 
 // Save: the float file beside the PNG records the render in its header
 // (EXR) and is in display units (1.0 = the report's white) when asked.
 TEST(SaveImage, FloatFileRecordsTheRenderAndCanBeDisplayReferred) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("whisker-save-image-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const TempDir temp("save-image");
+  const fs::path& dir = temp.path();
   Scene scene = sized("three-balls", 24, 16, 2, 2);
   scene.settings.seed = 9;
   ProgressiveRenderer r(1);
@@ -186,7 +186,6 @@ TEST(SaveImage, FloatFileRecordsTheRenderAndCanBeDisplayReferred) {
     for (std::size_t k = 0; k < radiance.rgb.size(); ++k)
       EXPECT_NEAR(display.rgb[k], radiance.rgb[k] / report_white(), 1e-5f * (1 + display.rgb[k]));
   }
-  fs::remove_all(dir);
 }
 
 // A/B: "Hold this image" keeps the image and its settings and turns the

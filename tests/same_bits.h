@@ -1,0 +1,15 @@
+// Test helper: two vectors of sums equal bit for bit (what the exactness
+// claims of merges, resumes and the accumulation files are about; == would
+// take -0.0 for 0.0 and never a NaN for itself).
+#pragma once
+
+#include <cstring>
+#include <vector>
+
+namespace whisker {
+
+inline bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+}  // namespace whisker
