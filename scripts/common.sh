@@ -87,7 +87,9 @@ whisker_sanitizer_compiler() {
   local flags=-fsanitize=address,undefined
   [ "$1" = thread ] && flags=-fsanitize=thread
   command -v clang++ >/dev/null 2>&1 && command -v clang >/dev/null 2>&1 || return 0
-  echo 'int main() { return 0; }' | clang++ -x c++ "$flags" - -o /dev/null >/dev/null 2>&1 || return 0
+  # A here-string, not a pipe: a compiler that exits before reading its input
+  # would fail the pipe's writer under pipefail, whatever the compiler said.
+  clang++ -x c++ "$flags" - -o /dev/null <<<'int main() { return 0; }' >/dev/null 2>&1 || return 0
   echo clang++
 }
 

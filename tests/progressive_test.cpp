@@ -9,6 +9,7 @@
 #include "render/integrator.h"
 #include "render/light_cache.h"
 #include "render/progressive.h"
+#include "render/quick_passes.h"
 #include "scene/scene_io.h"
 #include "scene/world.h"
 #include "render_util.h"
