@@ -11,7 +11,6 @@
 #include "render/light_connect.h"
 #include "render/sampling.h"
 #include "render/scattering.h"
-#include "render/splitting.h"
 
 namespace whisker {
 

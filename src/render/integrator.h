@@ -1,12 +1,14 @@
 // The report's estimator: camera paths of up to max_depth bounces with direct
 // light from the point light at every diffuse hit, mirror, glass with optional
 // Fresnel, and cosine-sampled indirect light, split at the first diffuse hits
-// (RenderSettings::split). Its parts: sampling.h, scattering.h,
-// direct_light.h, splitting.h.
+// (RenderSettings::split). Its parts: scattering.h (mirror, glass and the
+// cosine bounce), direct_light.h and light_connect.h.
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
 #include <atomic>
+#include <cstddef>
 #include <span>
 
 #include <xmmintrin.h>
@@ -113,6 +115,30 @@ void trace_paths(const PathContext& ctx, PathState* paths, Sampler* samplers, in
 // it can carry no more light, so its light and bounces would all be zero.
 inline bool ends_dark(const RenderSettings& settings, const vec3& beta) {
   return settings.zero_cutoff && beta.x == 0.0f && beta.y == 0.0f && beta.z == 0.0f;
+}
+
+// ---- the split factor ------------------------------------------------------
+// At the d-th diffuse hit of a path, RenderSettings::split[d] indirect
+// continuations leave and their light is averaged (each is an unbiased
+// estimate of the same integral, so their mean is too, with less variance),
+// the count weighted by the colour channels the path still carries.
+
+// The split factor for a path whose throughput is beta (see
+// RenderSettings::split_weights): round(split * the largest weight of a
+// channel beta still carries), at least 1.
+inline int weighted_split(int split, const vec3& beta, const vec3& weights) {
+  float w = 0.0f;
+  for (int c = 0; c < 3; ++c)
+    if (beta[c] != 0.0f) w = std::max(w, weights[c]);
+  return std::max(1, int(float(split) * w + 0.5f));
+}
+
+// The number of continuations at a path's diffuse hit number `diffuse_hits`
+// (0: the first), given its throughput beta.
+inline int split_factor(const RenderSettings& settings, int diffuse_hits, const vec3& beta) {
+  const std::size_t d = std::size_t(diffuse_hits);
+  return weighted_split(d < settings.split.size() ? settings.split[d] : 1, beta,
+                        settings.split_weights);
 }
 
 // ---- the pixel loop: a tile of a pass ------------------------------------

@@ -12,7 +12,7 @@
 
 namespace whisker {
 
-World::World(const Scene& scene, const World* reuse) {
+World::World(const Scene& scene, const World* previous) {
   origin_ = glm::dvec3(scene.camera.position);
   const auto here = [&](const glm::dvec3& p) { return to_render(p); };
   set_light_clearance(scene);
@@ -37,10 +37,10 @@ World::World(const Scene& scene, const World* reuse) {
     mesh_material_.push_back(m.material);
     mesh_vertex_normals_.push_back(m.vertex_normals);
   }
-  build_meshes(scene, reuse);
+  build_meshes(scene, previous);
 }
 
-void World::build_meshes(const Scene& scene, const World* reuse) {
+void World::build_meshes(const Scene& scene, const World* previous) {
   // The objects holding each mesh, meshes in the order of their first holder.
   std::vector<const TriangleMesh*> order;
   std::unordered_map<const TriangleMesh*, std::vector<std::uint32_t>> users;
@@ -60,9 +60,9 @@ void World::build_meshes(const Scene& scene, const World* reuse) {
   if (!once.empty()) {
     // The triangles are in render space: a BVH is shared only by Worlds with
     // the same camera position (a moved camera rebuilds it).
-    if (reuse && reuse->mesh_ && reuse->mesh_->sources == sources &&
-        reuse->mesh_->method == method && reuse->mesh_->origin == origin_)
-      mesh_ = reuse->mesh_;
+    if (previous && previous->mesh_ && previous->mesh_->sources == sources &&
+        previous->mesh_->method == method && previous->mesh_->origin == origin_)
+      mesh_ = previous->mesh_;
     else
       mesh_ = build_mesh(scene, once, origin_);
   }
@@ -71,7 +71,7 @@ void World::build_meshes(const Scene& scene, const World* reuse) {
     const std::vector<std::uint32_t>& u = users[mesh];
     if (u.size() < 2) continue;
     const auto index = static_cast<std::uint32_t>(shared_.size());
-    shared_.push_back(shared_mesh(scene, u.front(), reuse));
+    shared_.push_back(shared_mesh(scene, u.front(), previous));
     for (MeshInstance& m : place_instances(scene, u, index)) placed.push_back(m);
   }
   objects_ = ObjectBvh(spheres_, mesh_ ? mesh_->bounds : Box3{}, std::move(placed));
@@ -80,12 +80,12 @@ void World::build_meshes(const Scene& scene, const World* reuse) {
 
 // The mesh of scene.meshes[object], built in a frame of its own (its
 // middle, as the mesh holds it): whatever the camera, the same BVH, so
-// `reuse`'s is taken when it has one.
+// `previous`'s is taken when it has one.
 std::shared_ptr<const World::MeshData> World::shared_mesh(const Scene& scene, std::uint32_t object,
-                                                         const World* reuse) const {
+                                                         const World* previous) const {
   const TriangleMesh& mesh = *scene.meshes[object].mesh;
-  if (reuse)
-    for (const auto& d : reuse->shared_)
+  if (previous)
+    for (const auto& d : previous->shared_)
       if (d->sources.front() == &mesh && d->method == scene.settings.accel) return d;
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {

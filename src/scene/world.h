@@ -45,8 +45,8 @@ class World {
   // (its middle, unscaled), and each of them is an instance of it: memory
   // follows the distinct meshes, not the placements. A mesh one object
   // holds is placed in render space with the others held once, in one BVH.
-  // `reuse` may hold a World built from the same meshes: its BVHs are shared.
-  explicit World(const Scene& scene, const World* reuse = nullptr);
+  // `previous`, a World built before from the same meshes, lends its BVHs.
+  explicit World(const Scene& scene, const World* previous = nullptr);
 
   bool intersect(const Ray& ray, SurfaceHit& out) const;
   // The same in two steps, so that a caller can look at the material before
@@ -157,11 +157,11 @@ class World {
   void set_light_cages();
   bool outside_a_light_cage(const Ray& ray) const;
   std::uint32_t light_sphere_passed(const Ray& ray) const;
-  void build_meshes(const Scene& scene, const World* reuse);
+  void build_meshes(const Scene& scene, const World* previous);
   std::shared_ptr<const MeshData> build_mesh(const Scene& scene, const std::vector<std::uint32_t>& objects,
                                              const glm::dvec3& origin) const;
   std::shared_ptr<const MeshData> shared_mesh(const Scene& scene, std::uint32_t object,
-                                              const World* reuse) const;
+                                              const World* previous) const;
   std::vector<MeshInstance> place_instances(const Scene& scene, const std::vector<std::uint32_t>& users,
                                             std::uint32_t mesh);
   void build_light_buffer(BvhMethod method);
