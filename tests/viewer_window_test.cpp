@@ -230,6 +230,25 @@ TEST_F(ViewerWindow, ScriptedLightMoveRestartsCleanly) {
   EXPECT_GT(changed, a.px.size() / 20);
 }
 
+// Fresnel switched where nothing is glass changes nothing the render can
+// show: the accumulation carries on (one generation, every pass kept), and
+// the image is the headless one with Fresnel as it was. Where there is
+// glass the same switch restarts.
+TEST_F(ViewerWindow, FresnelWithoutGlassRestartsNothing) {
+  const std::string common = "--scene diffuse-ball --aa on --indirect on --frames 5";
+  nlohmann::json summary;
+  expect_window_matches_headless("fresnel-no-glass", common + " --edit-after 2 --edit-toggle fresnel",
+                                 common, nullptr, &summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary["generation"].get<int>(), 1) << "no restart";
+  EXPECT_EQ(summary["spp"].get<int>(), 5);
+  const std::string glass = "--scene three-balls --aa on --frames 4";
+  expect_window_matches_headless("fresnel-glass", glass + " --edit-after 2 --edit-toggle fresnel",
+                                 glass + " --fresnel on", nullptr, &summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary["generation"].get<int>(), 2) << "with glass, Fresnel restarts";
+}
+
 // The default scene (the cat, indirect + AA) after two passes.
 TEST_F(ViewerWindow, CatMatchesHeadless) {
   expect_window_matches_headless("cat", "--frames 2", "--scene cat --frames 2");

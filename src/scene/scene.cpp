@@ -44,4 +44,15 @@ bool deterministic_estimate(const Scene& scene) {
   return !s.indirect && !s.aa && !(s.fresnel && has_glass(scene));
 }
 
+RenderSettings image_settings(const Scene& scene) {
+  RenderSettings s = scene.settings;
+  if (!has_glass(scene)) s.fresnel = false;
+  if (!s.indirect) {
+    s.split = {1};
+    s.split_weights = vec3(1.0f);
+    s.connect = false;
+  }
+  return s;
+}
+
 }  // namespace whisker

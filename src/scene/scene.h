@@ -99,6 +99,12 @@ bool has_glass(const Scene& scene);
 // one point light. Its render is exact after one pass.
 bool deterministic_estimate(const Scene& scene);
 
+// The settings as far as they can change `scene`'s image: Fresnel off where
+// there is no glass; without indirect light no splitting, split weights or
+// light connections (they act on indirect paths only). Two settings with
+// the same image settings render the same image, sample for sample.
+RenderSettings image_settings(const Scene& scene);
+
 // The largest coordinate a scene position may have (scene files, --light).
 // Render space is relative to the camera (world.h), so what limits this is
 // the distance across the scene in float, not the offset from the origin.

@@ -42,7 +42,7 @@ bool only_target_raised(const Scene& applied, const Scene& edited) {
   if (before == after || before <= 0 || (after > 0 && after < before)) return false;
   Scene same = applied;
   same.settings.target_spp = after;
-  return classify_change(same, edited) == SceneChange::None;
+  return classify_change(same, edited) <= SceneChange::Inert;
 }
 
 void Controller::apply_edits(double now, bool record) {
@@ -56,6 +56,9 @@ void Controller::apply_edits(double now, bool record) {
   }
   switch (classify_change(s.applied, s.edited)) {
     case SceneChange::None:
+      return;
+    case SceneChange::Inert:  // the same image: the accumulation carries on
+      s.applied = s.edited;
       return;
     case SceneChange::Settings:
       s.generation = renderer.set_settings(s.edited.settings);

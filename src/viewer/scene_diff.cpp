@@ -26,7 +26,8 @@ SceneChange classify_change(const Scene& before, const Scene& after) {
       !same_spheres(before, after) || !same_meshes(before, after))
     return SceneChange::Scene;
   // Every render setting, through RenderSettings' defaulted comparison.
-  if (before.settings != after.settings) return SceneChange::Settings;
+  if (before.settings != after.settings)
+    return image_settings(before) == image_settings(after) ? SceneChange::Inert : SceneChange::Settings;
   return SceneChange::None;
 }
 

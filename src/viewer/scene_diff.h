@@ -8,6 +8,8 @@ namespace whisker {
 
 enum class SceneChange {
   None,      // nothing the renderer sees
+  Inert,     // settings that cannot change this scene's image (image_settings):
+             // applied, nothing restarts
   Settings,  // render settings only: set_settings()
   Scene,     // light, materials, camera or geometry: set_scene()
 };

@@ -1,6 +1,8 @@
 // Which edits restart the render (viewer/scene_diff.h).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "viewer/scene_diff.h"
 #include "test_scenes.h"
 
@@ -19,10 +21,13 @@ TEST(SceneChange, SameValuesRestartNothing) {
 }
 
 TEST(SceneChange, SettingsOnly) {
-  const Scene a = three_balls();
+  Scene a = three_balls();
+  a.settings.indirect = true;  // which splitting and its weights act on
   for (auto edit : {+[](RenderSettings& r) { r.spp = 4; },
                     +[](RenderSettings& r) { r.max_depth = 2; },
-                    +[](RenderSettings& r) { r.indirect = true; },
+                    +[](RenderSettings& r) { r.indirect = false; },
+                    +[](RenderSettings& r) { r.connect = !r.connect; },
+                    +[](RenderSettings& r) { r.fresnel = !r.fresnel; },
                     +[](RenderSettings& r) { r.aa = true; },
                     +[](RenderSettings& r) { r.target_spp = 64; },
                     +[](RenderSettings& r) { r.sampler = SamplerKind::Independent; },
@@ -32,6 +37,35 @@ TEST(SceneChange, SettingsOnly) {
     Scene b = a;
     edit(b.settings);
     EXPECT_EQ(classify_change(a, b), SceneChange::Settings);
+  }
+}
+
+// Settings that cannot change this scene's image are applied without a
+// restart: Fresnel where nothing is glass; splitting, its weights and light
+// connections without indirect light. With glass, Fresnel restarts.
+TEST(SceneChange, SettingsThatCannotChangeTheImageRestartNothing) {
+  Scene plain = three_balls();
+  plain.spheres.erase(std::remove_if(plain.spheres.begin(), plain.spheres.end(),
+                                     [](const SphereObject& s) { return is_glass(s.material.kind); }),
+                      plain.spheres.end());
+  ASSERT_FALSE(has_glass(plain));
+  Scene b = plain;
+  b.settings.fresnel = !b.settings.fresnel;
+  EXPECT_EQ(classify_change(plain, b), SceneChange::Inert);
+  b.settings.aa = !b.settings.aa;  // and one that does change it
+  EXPECT_EQ(classify_change(plain, b), SceneChange::Settings);
+  const Scene glass = three_balls();
+  ASSERT_TRUE(has_glass(glass));
+  b = glass;
+  b.settings.fresnel = !b.settings.fresnel;
+  EXPECT_EQ(classify_change(glass, b), SceneChange::Settings);
+  ASSERT_FALSE(glass.settings.indirect);
+  for (auto edit : {+[](RenderSettings& r) { r.split = {8, 2}; },
+                    +[](RenderSettings& r) { r.split_weights = vec3(1.0f, 0.5f, 1.0f); },
+                    +[](RenderSettings& r) { r.connect = !r.connect; }}) {
+    b = glass;
+    edit(b.settings);
+    EXPECT_EQ(classify_change(glass, b), SceneChange::Inert);
   }
 }
 
