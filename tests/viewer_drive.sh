@@ -151,8 +151,16 @@ wait_first_pass() {
 wait_spp() { for k in $(seq 120); do xdotool getwindowname "$wid" | grep -q " $1 spp$" && return; sleep 0.5; done; }
 
 # Esc, then waits for the viewer to quit; its exit code goes into NAME.err.
+# After edits the viewer asks first ("Quit and discard the edits?"): Enter
+# says yes. NAME.asked records whether it asked.
 quit_viewer() {  # name
   press Escape
+  local k
+  for k in $(seq 20); do running || break; sleep 0.1; done
+  if running; then
+    echo asked >"$dir/$1.asked"
+    press Return
+  fi
   wait "$pid"
   echo "exit $?" >>"$dir/$1.err"
 }

@@ -61,3 +61,7 @@ whisker_viewer_script_test(ViewerInput.SaveSceneLeavesNothingToDiscardAFurtherEd
 # A new user's walk on the cat: orbit, wheel, light, glass, Fresnel,
 # indirect, depth, undo, redo, save, Esc; a sane image after every step.
 whisker_viewer_script_test(ViewerInput.NewUserWalkOnTheCatStaysSane viewer_walk_test.sh 300)
+
+# Esc closes an open dropdown or question before it quits; with unsaved
+# edits quitting asks, and Enter says yes.
+whisker_viewer_script_test(ViewerInput.EscClosesPopupsQuitAsksAfterEdits viewer_quit_test.sh 300)

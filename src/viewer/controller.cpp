@@ -118,12 +118,16 @@ void Controller::save_scene() {
   }
 }
 
-void Controller::load(const std::string& name_or_path, double now, bool confirmed,
-                      const std::string& mesh) {
+bool Controller::edits_unsaved() const {
   // Edits that are saved in a scene file are not lost by loading another.
   const bool saved = s.have_saved_scene && classify_change(s.saved_scene, s.applied) == SceneChange::None &&
                      classify_change(s.applied, s.edited) == SceneChange::None;
-  const bool ask = !confirmed && s.history.can_undo() && !saved;
+  return s.history.can_undo() && !saved;
+}
+
+void Controller::load(const std::string& name_or_path, double now, bool confirmed,
+                      const std::string& mesh) {
+  const bool ask = !confirmed && edits_unsaved();
   s.pending_load.clear();
   s.pending_mesh.clear();
   try {

@@ -44,6 +44,9 @@ struct Controller {
   // Loads a bundled scene by name or a scene file; errors go to the panel.
   // With edits that could be undone it first asks (s.pending_load) unless
   // `confirmed`.
+  // Whether edits would be lost by loading another scene or quitting: there
+  // are edits to undo and the applied scene is not the one last saved.
+  bool edits_unsaved() const;
   void load(const std::string& name_or_path, double now, bool confirmed = false,
             const std::string& mesh = {});
   // Writes the image as shown (PNG) and its radiance (EXR, or PFM; in

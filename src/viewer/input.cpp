@@ -12,13 +12,16 @@
 
 namespace whisker {
 
-void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& req) {
+void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, bool popup_open,
+              PanelRequests& req) {
+  // Before the keyboard test: ImGui takes the keyboard while a question is open.
+  if (keys.escape && popup_open) req.close_popups = true;
   if (imgui_wants_keyboard) return;
   if (keys.space) req.toggle_pause = true;
   if (keys.r) req.restart = true;
   if (keys.s) req.save = true;
   if (keys.c) req.print_camera = true;
-  if (keys.escape) req.quit = true;
+  if (keys.escape && !popup_open) req.quit = true;
   if (keys.undo) req.undo = true;
   if (keys.redo) req.redo = true;
 }
@@ -86,5 +89,9 @@ MouseInput read_mouse() {
 }
 
 bool imgui_wants_keyboard() { return ImGui::GetIO().WantCaptureKeyboard; }
+
+bool imgui_popup_open() {
+  return ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
+}
 
 }  // namespace whisker

@@ -17,14 +17,16 @@ struct KeyPresses {
   bool r = false;       // restart
   bool s = false;       // save
   bool c = false;       // print the camera as JSON
-  bool escape = false;  // quit
+  bool escape = false;  // close the open popup, else quit
   bool undo = false;    // Ctrl+Z
   bool redo = false;    // Ctrl+Y or Ctrl+Shift+Z
 };
 
 // Adds the keys' requests to `req`; none while ImGui takes keyboard input
-// (a text field has focus), so typing "s" in a path does not save.
-void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, PanelRequests& req);
+// (a text field has focus), so typing "s" in a path does not save. Esc
+// with a popup open (a dropdown, a question) closes it and quits nothing.
+void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, bool popup_open,
+              PanelRequests& req);
 
 // The mouse this frame, for buttons left, right, middle.
 struct MouseInput {
@@ -58,5 +60,7 @@ KeyPresses read_keys();
 MouseInput read_mouse();
 // True while ImGui takes keyboard input.
 bool imgui_wants_keyboard();
+// Whether a popup (a dropdown's list, a question) is open.
+bool imgui_popup_open();
 
 }  // namespace whisker

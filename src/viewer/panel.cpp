@@ -325,6 +325,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
   ImGui::EndChild();
 
   confirm_load_popup(s, req);
+  confirm_quit_popup(s, req);
   ImGui::PopItemWidth();
   ImGui::End();
 }

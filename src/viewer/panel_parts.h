@@ -21,6 +21,8 @@ void controls(const ViewerState& s, PanelRequests& req);
 void save_section(ViewerState& s, PanelRequests& req);
 // Asks before a load throws away edits that could be undone.
 void confirm_load_popup(ViewerState& s, PanelRequests& req);
+// "Quit and discard the edits?" while s.pending_quit.
+void confirm_quit_popup(ViewerState& s, PanelRequests& req);
 // Hold the current image and compare it with the live one.
 void compare_section(ViewerState& s, PanelRequests& req);
 

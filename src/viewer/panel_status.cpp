@@ -297,4 +297,23 @@ void confirm_load_popup(ViewerState& s, PanelRequests& req) {
   ImGui::EndPopup();
 }
 
+void confirm_quit_popup(ViewerState& s, PanelRequests& req) {
+  if (!s.pending_quit) return;
+  if (!ImGui::IsPopupOpen("Quit and discard the edits?")) ImGui::OpenPopup("Quit and discard the edits?");
+  if (!ImGui::BeginPopupModal("Quit and discard the edits?", nullptr, ImGuiWindowFlags_AlwaysAutoResize))
+    return;
+  ImGui::Text("The scene has edits that are not saved (Save > Save scene keeps them).");
+  // Enter quits, Esc (the viewer's close_popups) stays.
+  if (ImGui::Button("Discard and quit") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter))) {
+    req.confirm_quit = true;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) {
+    s.pending_quit = false;
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
+}
+
 }  // namespace whisker

@@ -17,6 +17,7 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>  // ClosePopupToLevel: Esc closes a dropdown
 
 #include "io/image_io.h"
 #include "io/stats_io.h"
@@ -153,7 +154,12 @@ struct Session {
     const int img_h = display.height() ? display.height() : s.applied.camera.height;
     const PixelRect rect = fit_image(area, img_w, img_h);
 
-    map_keys(read_keys(), imgui_wants_keyboard(), req);
+    map_keys(read_keys(), imgui_wants_keyboard(), imgui_popup_open(), req);
+    if (req.close_popups) {
+      ImGui::ClosePopupToLevel(0, true);
+      s.pending_load.clear();
+      s.pending_quit = false;
+    }
     req.typing = ImGui::GetIO().WantTextInput && ImGui::IsAnyItemActive();
     req.editing = ImGui::IsAnyItemActive() || ImGui::IsAnyMouseDown();
     // A held mouse button (an orbit, a slider) makes edits faster than
@@ -178,6 +184,10 @@ struct Session {
 
     ctl.carry_out(req, t0);
     if (req.quit) glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (req.confirm_quit) {
+      quit_confirmed = true;
+      glfwSetWindowShouldClose(window, GLFW_TRUE);
+    }
     if (s.held.spp > 0 && s.held.version != held_uploaded) {
       held_display.upload(s.held, true);
       held_uploaded = s.held.version;
@@ -277,10 +287,22 @@ struct Session {
   ReadoutShown readout{};  // the pixel readout drawn this frame
   ImageArea image_area{};  // where the image is, in window units
 
+  // Esc, Quit or the window's close button: with unsaved edits the panel
+  // asks first (confirm_quit_popup), and the window stays until it is told.
+  bool quit_confirmed = false;
+  bool should_close() {
+    if (!glfwWindowShouldClose(window)) return false;
+    if (quit_confirmed || !ctl.edits_unsaved()) return true;
+    glfwSetWindowShouldClose(window, GLFW_FALSE);
+    s.pending_quit = true;
+    request_redraw();
+    return false;
+  }
+
   // Runs until the window closes or the scripted run is done; the exit code.
   int run() {
     int exit_code = 0;
-    while (!glfwWindowShouldClose(window)) {
+    while (!should_close()) {
       const double t0 = wait_for_events();
       const bool fresh = take_snapshot();
       // Draw only when the screen can change: a new pass, input (and a few

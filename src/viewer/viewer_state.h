@@ -33,6 +33,8 @@ struct PanelRequests {
   int goto_bookmark = -1;   // >= 0: take that bookmark's camera
   bool editing = false;     // a widget or a mouse button is held: one undo step
   bool confirm_load = false;  // discard the edits and load s.pending_load
+  bool close_popups = false;  // Esc with a dropdown or a question open
+  bool confirm_quit = false;  // discard the edits and quit
 };
 
 // The A/B comparison: an image held back, shown instead of or beside the
@@ -75,6 +77,7 @@ struct ViewerState {
   EditHistory history;
   std::vector<Camera> bookmarks;
   std::string pending_load;  // a load waiting for "discard the edits?"
+  bool pending_quit = false;  // a quit waiting for "discard the edits?"
   // The scene as last written by Save scene: its edits are kept, so loading
   // another scene asks nothing while the applied scene is still this one.
   Scene saved_scene;

@@ -101,6 +101,8 @@ std::string take_dropped_file() {
   return path;
 }
 
+void request_redraw() { mark_redraw(); }
+
 bool redraw_pending() { return g_redraw > 0; }
 void take_redraw() {
   if (g_redraw > 0) --g_redraw;

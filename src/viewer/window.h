@@ -71,6 +71,7 @@ class ImGuiSession {
 // Input (or a window event) asks for a few frames to be drawn so ImGui can
 // settle; the loop takes one of them per drawn frame.
 bool redraw_pending();
+void request_redraw();  // as input does
 // The file dropped on the window since the last call ("" if none).
 std::string take_dropped_file();
 

@@ -10,7 +10,7 @@ TEST(InputMapping, ShortcutKeysGiveTheirRequests) {
   KeyPresses keys;
   keys.space = keys.r = keys.s = keys.c = keys.escape = true;
   PanelRequests req;
-  map_keys(keys, false, req);
+  map_keys(keys, false, false, req);
   EXPECT_TRUE(req.toggle_pause);
   EXPECT_TRUE(req.restart);
   EXPECT_TRUE(req.save);
@@ -20,7 +20,7 @@ TEST(InputMapping, ShortcutKeysGiveTheirRequests) {
   PanelRequests only_r;
   KeyPresses r;
   r.r = true;
-  map_keys(r, false, only_r);
+  map_keys(r, false, false, only_r);
   EXPECT_TRUE(only_r.restart);
   EXPECT_FALSE(only_r.toggle_pause || only_r.save || only_r.print_camera || only_r.quit);
 }
@@ -29,12 +29,29 @@ TEST(InputMapping, KeysAreIgnoredWhileImGuiTakesText) {
   KeyPresses keys;
   keys.space = keys.r = keys.s = keys.c = keys.escape = true;
   PanelRequests req;
-  map_keys(keys, true, req);  // e.g. typing "s" into the path field
+  map_keys(keys, true, false, req);  // e.g. typing "s" into the path field
   EXPECT_FALSE(req.toggle_pause || req.restart || req.save || req.print_camera || req.quit);
   // A request the panel already made is kept.
   req.save = true;
-  map_keys(keys, true, req);
+  map_keys(keys, true, false, req);
   EXPECT_TRUE(req.save);
+}
+
+// Esc with a popup open (a dropdown's list, a question) closes it and quits
+// nothing, also while the question holds the keyboard; with none, it quits.
+TEST(InputMapping, EscClosesAnOpenPopupBeforeItQuits) {
+  KeyPresses esc;
+  esc.escape = true;
+  for (bool keyboard : {false, true}) {
+    PanelRequests req;
+    map_keys(esc, keyboard, true, req);
+    EXPECT_TRUE(req.close_popups) << keyboard;
+    EXPECT_FALSE(req.quit) << keyboard;
+  }
+  PanelRequests req;
+  map_keys(esc, false, false, req);
+  EXPECT_TRUE(req.quit);
+  EXPECT_FALSE(req.close_popups);
 }
 
 TEST(InputMapping, LeftDragOnTheImageOrbits) {
@@ -103,12 +120,12 @@ TEST(InputMapping, CtrlZAndCtrlYUndoAndRedoButNotWhileTyping) {
   KeyPresses k;
   k.undo = true;
   PanelRequests req;
-  map_keys(k, false, req);
+  map_keys(k, false, false, req);
   EXPECT_TRUE(req.undo);
   EXPECT_FALSE(req.redo);
   k.undo = false;
   k.redo = true;
   PanelRequests typing;
-  map_keys(k, true, typing);  // a text field has its own undo
+  map_keys(k, true, false, typing);  // a text field has its own undo
   EXPECT_FALSE(typing.redo);
 }
