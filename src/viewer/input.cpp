@@ -33,10 +33,20 @@ void MouseCamera::update(Camera& cam, const MouseInput& in, float image_scale, c
     if (in.clicked[b]) dragging_[b] = !in.imgui_wants_mouse;
     if (!in.down[b]) dragging_[b] = false;
   }
-  const bool moved =
-      (in.dx != 0.0f || in.dy != 0.0f) && std::isfinite(in.dx) && std::isfinite(in.dy);
-  if (moved && dragging_[0]) orbit(cam, -in.dx * 0.008f, -in.dy * 0.008f);
-  if (moved && (dragging_[1] || dragging_[2])) pan(cam, in.dx / image_scale, in.dy / image_scale);
+  // A drag moves by what the pointer did since the button went down: in the
+  // press's own frame from the press position, after it frame by frame.
+  const auto drag = [&](int b, float& dx, float& dy) {
+    dx = in.clicked[b] ? in.x - in.press_x[b] : in.dx;
+    dy = in.clicked[b] ? in.y - in.press_y[b] : in.dy;
+    return dragging_[b] && (dx != 0.0f || dy != 0.0f) && std::isfinite(dx) && std::isfinite(dy);
+  };
+  float dx = 0.0f, dy = 0.0f;
+  if (drag(0, dx, dy)) orbit(cam, -dx * 0.008f, -dy * 0.008f);
+  for (int b : {1, 2})
+    if (drag(b, dx, dy)) {
+      pan(cam, dx / image_scale, dy / image_scale);
+      break;
+    }
   if (in.wheel != 0.0f && !in.imgui_wants_mouse) dolly(cam, std::pow(0.9f, in.wheel));
   const bool cut = world && cam.position != before.position && stop_at_surfaces(before, cam, *world);
   if (stopped) *stopped = cut;
@@ -83,6 +93,9 @@ MouseInput read_mouse() {
   }
   m.dx = io.MouseDelta.x;
   m.dy = io.MouseDelta.y;
+  m.x = io.MousePos.x;
+  m.y = io.MousePos.y;
+  for (int b = 0; b < 3; ++b) press_position(b, m.press_x[b], m.press_y[b]);
   m.wheel = io.MouseWheel;
   m.imgui_wants_mouse = io.WantCaptureMouse;
   return m;

@@ -33,6 +33,11 @@ struct MouseInput {
   bool clicked[3] = {false, false, false};  // pressed this frame
   bool down[3] = {false, false, false};
   float dx = 0.0f, dy = 0.0f;  // movement in window units
+  // The pointer now, and where it was when each button went down (from the
+  // press event itself: a press and a move in one frame do not put the
+  // move before the press into the drag).
+  float x = 0.0f, y = 0.0f;
+  float press_x[3] = {0.0f, 0.0f, 0.0f}, press_y[3] = {0.0f, 0.0f, 0.0f};
   float wheel = 0.0f;
   bool imgui_wants_mouse = false;  // over the panel or one of its widgets
 };

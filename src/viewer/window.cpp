@@ -22,6 +22,7 @@ std::string g_glfw_error;
 int g_redraw = 0;  // frames to draw because of input
 std::string g_dropped;  // the last file dropped on the window
 std::vector<KeyPress> g_key_presses;
+float g_press[3][2] = {};  // press_position()
 
 void on_glfw_error(int code, const char* text) {
   g_glfw_error = std::string(text ? text : "") + " (GLFW error " + std::to_string(code) + ")";
@@ -60,7 +61,15 @@ void pin_gl_driver() {}
 void mark_redraw() { g_redraw = 3; }
 void install_redraw_callbacks(GLFWwindow* w) {
   glfwSetCursorPosCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
-  glfwSetMouseButtonCallback(w, [](GLFWwindow*, int, int, int) { mark_redraw(); });
+  glfwSetMouseButtonCallback(w, [](GLFWwindow* win, int button, int action, int) {
+    if (action == GLFW_PRESS && button >= 0 && button < 3) {
+      double x = 0.0, y = 0.0;
+      glfwGetCursorPos(win, &x, &y);
+      g_press[button][0] = float(x);
+      g_press[button][1] = float(y);
+    }
+    mark_redraw();
+  });
   glfwSetScrollCallback(w, [](GLFWwindow*, double, double) { mark_redraw(); });
   glfwSetKeyCallback(w, [](GLFWwindow*, int key, int, int action, int mods) {
     // Every press, in order, even one released before the next frame:
@@ -99,6 +108,11 @@ std::string take_dropped_file() {
   std::string path;
   path.swap(g_dropped);
   return path;
+}
+
+void press_position(int b, float& x, float& y) {
+  x = g_press[b][0];
+  y = g_press[b][1];
 }
 
 void request_redraw() { mark_redraw(); }

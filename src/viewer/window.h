@@ -86,5 +86,8 @@ std::vector<KeyPress> take_key_presses();
 // Puts presses back in front of the queue, for the next frame.
 void put_back_key_presses(const std::vector<KeyPress>& keys);
 void take_redraw();
+// Where the pointer was (window units) when mouse button b last went down,
+// read in GLFW's press event.
+void press_position(int b, float& x, float& y);
 
 }  // namespace whisker

@@ -73,6 +73,31 @@ TEST(InputMapping, LeftDragOnTheImageOrbits) {
   EXPECT_EQ(c.position, after);
 }
 
+// A press that arrives in the same frame as a pointer move: the move
+// before the press is no part of the drag (the frame's delta, 40 units,
+// is ignored), the move after it is (from the press position).
+TEST(InputMapping, ADragStartsWhereTheButtonWentDown) {
+  MouseInput in;
+  in.clicked[0] = in.down[0] = true;
+  in.dx = 40.0f;  // the pointer came 40 units this frame, then the press
+  in.x = in.press_x[0] = 300.0f;
+  in.y = in.press_y[0] = 200.0f;
+  Camera c;
+  MouseCamera mouse;
+  mouse.update(c, in, 1.0f);
+  EXPECT_EQ(c.position, Camera().position) << "the move before the press orbited";
+  // Pressed at 290, the pointer at 300 by the frame: an orbit of 10 units,
+  // the same as a press at 290 and a 10-unit move in the next frame.
+  in.press_x[0] = 290.0f;
+  Camera d;
+  MouseCamera other;
+  other.update(d, in, 1.0f);
+  Camera e;
+  orbit(e, -10.0f * 0.008f, 0.0f);
+  EXPECT_NEAR(d.position.x, e.position.x, 1e-9);
+  EXPECT_NEAR(d.position.z, e.position.z, 1e-9);
+}
+
 TEST(InputMapping, DragStartedOnThePanelNeverMovesTheCamera) {
   Camera c;
   MouseCamera mouse;
