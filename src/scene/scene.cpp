@@ -31,6 +31,13 @@ vec3 camera_right(const Camera& camera, const vec3& forward) {
   return unit_or_zero(glm::cross(forward, pow2_scaled(camera.up)));
 }
 
+std::size_t triangle_count(const Scene& scene) {
+  std::size_t n = 0;
+  for (const MeshObject& m : scene.meshes)
+    if (m.mesh) n += m.mesh->triangles.size();
+  return n;
+}
+
 bool has_glass(const Scene& scene) {
   for (const SphereObject& sp : scene.spheres)
     if (is_glass(sp.material.kind)) return true;

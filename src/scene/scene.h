@@ -91,6 +91,10 @@ struct Scene {
 
 std::span<const EnumName<MaterialKind>> enum_names(MaterialKind);
 
+// The triangles of the scene's meshes, a mesh placed twice counted twice
+// (what World::triangle_count() traces).
+std::size_t triangle_count(const Scene& scene);
+
 // Whether a sphere or mesh of the scene is glass (solid or hollow).
 bool has_glass(const Scene& scene);
 

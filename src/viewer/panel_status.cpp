@@ -174,8 +174,10 @@ void error_plot(const ViewerState& s) {
 
 std::uint64_t status_section(const ViewerState& s, double now) {
   const Snapshot& sn = s.snap;
-  const bool stale = sn.generation != s.generation;
-  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), sn.width, sn.height, state_text(s).c_str());
+  // "Before the edit": the numbers are an earlier generation's (none at the start).
+  const bool stale = sn.generation != 0 && sn.generation != s.generation;
+  ImGui::Text("%s  %dx%d  %s", s.scene_label.c_str(), s.applied.camera.width, s.applied.camera.height,
+              state_text(s).c_str());
   const std::uint64_t bar_spp = progress_lines(s);
   if (!stale && sn.spp > 0 && deterministic_estimate(s.applied))
     ImGui::Text("noise: none, exact (a deterministic estimate)");
@@ -188,7 +190,7 @@ std::uint64_t status_section(const ViewerState& s, double now) {
       "'(before the edit)' means the image still shows the previous settings.");
   error_plot(s);
   ImGui::Text("NaN/Inf dropped %llu  triangles %zu  since edit %.1f s",
-              (unsigned long long)sn.counters.nan_count, s.triangles, now - s.last_change);
+              (unsigned long long)sn.counters.nan_count, triangle_count(s.applied), now - s.last_change);
   tip("Samples that came out not-a-number or infinite are dropped and counted here. "
       "'since edit': time since the last change that restarted the render.");
   if (s.frame_ms_avg > 0.0f)

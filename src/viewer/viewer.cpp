@@ -111,7 +111,6 @@ struct Session {
     blend_for_display(s.snap, s.quick, s.applied.settings, s.shown);
     upload_image();
     if (!own) return true;
-    s.triangles = s.snap.triangles;
     s.nodes = s.snap.bvh_nodes;
     // Numbers come from the generation's own passes only.
     s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();

@@ -1,6 +1,8 @@
 // The viewer's state between frames and the ImGui panel that edits it.
 #pragma once
 
+#include <limits>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -65,8 +67,8 @@ struct ViewerState {
   Snapshot quick;  // the quick passes after an edit (ProgressiveRenderer::set_preview)
   Shown shown;     // what the window draws and S saves: snap, quick, or both combined
   ProgressiveRenderer::PassProgress progress;  // the pass in flight
-  double rse = 0.0;  // relative standard error of snap
-  std::size_t triangles = 0;
+  // Relative standard error of snap; NaN before a pass of its own has two samples.
+  double rse = std::numeric_limits<double>::quiet_NaN();
   std::size_t nodes = 0;  // 0: not known
   // log10 of the relative standard error, one entry per pass of this generation.
   std::vector<float> rse_history;
