@@ -25,32 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// "on|off", "brute|bbox|midpoint|sah", "INT in [1, 65536]": the value an
-// option takes, for --help.
-struct TypeName {
-  const SettingField& f;
-  std::string bounds(double hi) const {
-    std::ostringstream s;
-    s << std::setprecision(12) << " in [" << f.lo << ", " << hi << "]";
-    return s.str();
-  }
-  std::string operator()(bool RenderSettings::*) const { return "on|off"; }
-  std::string operator()(int RenderSettings::*) const {
-    return "INT" + bounds(f.option_hi > 0 ? f.option_hi : f.hi);
-  }
-  std::string operator()(std::uint64_t RenderSettings::*) const { return "UINT"; }
-  template <NamedEnum E>
-  std::string operator()(E RenderSettings::*) const {
-    std::string s;
-    for (const auto& n : enum_names(E{})) s += std::string(s.empty() ? "" : "|") + n.name;
-    return s;
-  }
-  std::string operator()(std::vector<int> RenderSettings::*) const {
-    return std::string("INT,... e.g. ") + f.example;
-  }
-  std::string operator()(vec3 RenderSettings::*) const { return "R,G,B each" + bounds(f.hi); }
-};
-
 std::string number_text(double v) {
   std::ostringstream s;
   s << std::setprecision(12) << v;
@@ -59,47 +33,109 @@ std::string number_text(double v) {
   return t;
 }
 
-// An integer option in [lo, hi]. The message reads "VALUE: why"; the parser
-// puts the option's name in front (one_line_error).
-CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
-  const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
-  const CLI::Validator v(
-      [=](std::string& text) -> std::string {
-        long long v = 0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (text.empty() || end != text.data() + text.size() ||
-            (ec != std::errc() && ec != std::errc::result_out_of_range))
-          return text + ": expected an integer";
-        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
-          return text + ": must be in " + range;
+// A refusal of an option's value, worded in full: "--frames abc: expected
+// an integer". Thrown from a check while CLI11 parses, it ends the parse as
+// CLI11's own errors do, and is printed as it is (parse_failure).
+class BadValue : public CLI::ParseError {
+ public:
+  explicit BadValue(const std::string& message)
+      : CLI::ParseError("BadValue", message, kUsageError) {}
+};
+
+// A check of `option`'s value: `why` says what is wrong with a text, or "".
+CLI::Validator refusing(const std::string& option,
+                        std::function<std::string(const std::string&)> why) {
+  return CLI::Validator(
+      [option, why](std::string& text) -> std::string {
+        if (const std::string w = why(text); !w.empty())
+          throw BadValue(option + " " + cut_for_message(text) + ": " + w);
         return {};
       },
       "");
-  return option->check(v)->type_name("INT in " + range);
 }
 
-// A finite number in [lo, hi], message as int_in's.
+// An integer option in [lo, hi], read by the one integer reader (settings.h).
+CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
+  const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
+  return option
+      ->check(refusing(option->get_name(),
+                       [=](const std::string& text) {
+                         long long v = 0;
+                         return read_integer(text, lo, hi, v);
+                       }))
+      ->type_name("INT in " + range);
+}
+
+// What is wrong with `text` as a finite number in [lo, hi] ("" if nothing).
+std::string number_problem(const std::string& text, double lo, double hi) {
+  const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
+  double v = 0.0;
+  if (!read_number(text, v)) {
+    // In full a number, but past double's range (1e400): a range error.
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
+      return "must be in " + range;
+    return "expected a number";
+  }
+  return v < lo || v > hi ? "must be in " + range : std::string();
+}
+
+// A number option in [lo, hi], read by the one number reader (settings.h).
 CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
   const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
-  const CLI::Validator v(
-      [=](std::string& text) -> std::string {
-        // The one number reader of options and their lists (settings.h).
-        double v = 0.0;
-        if (!read_number(text, v)) {
-          // In full a number, but past double's range (1e400): a range error.
-          double big = 0.0;
-          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), big);
-          if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
-            return text + ": must be in " + range;
-          return text + ": expected a number";
-        }
-        if (v < lo || v > hi)
-          return text + ": must be in " + range;
-        return {};
-      },
-      "");
-  return option->check(v)->type_name("NUMBER in " + range);
+  return option
+      ->check(refusing(option->get_name(),
+                       [=](const std::string& text) { return number_problem(text, lo, hi); }))
+      ->type_name("NUMBER in " + range);
 }
+
+// A settings option, typed as its member: CLI11 converts the text into the
+// member once a check has accepted it (enum names turned into their values
+// first). Lists are read by the table's own reader.
+struct SettingOption {
+  CLI::App& app;
+  const SettingField& f;
+  RenderSettings& s;
+  CLI::Option* add(CLI::Option* o) const { return o->type_name(value_syntax(f)); }
+  CLI::Option* operator()(bool RenderSettings::*m) const {
+    const auto on_off = [](const std::string& t) {
+      return t == "on" || t == "off" ? std::string() : "expected on or off";
+    };
+    return add(app.add_option(f.option, s.*m, f.help)->check(refusing(f.option, on_off)));
+  }
+  template <class T>
+    requires std::is_integral_v<T>
+  CLI::Option* operator()(T RenderSettings::*m) const {
+    const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
+    return add(int_in(app.add_option(f.option, s.*m, f.help), (long long)f.lo, (long long)hi));
+  }
+  template <NamedEnum E>
+  CLI::Option* operator()(E RenderSettings::*m) const {
+    const CLI::Validator by_name(
+        [option = std::string(f.option)](std::string& text) -> std::string {
+          E e{};
+          if (!parse(text, e))
+            throw BadValue(option + " " + cut_for_message(text) + ": expected " + name_list(e));
+          text = std::to_string(int(e));
+          return {};
+        },
+        "");
+    return add(app.add_option<E, std::underlying_type_t<E>>(f.option, s.*m, f.help)->transform(by_name));
+  }
+  template <class T>
+  CLI::Option* operator()(T RenderSettings::*) const {
+    const SettingField& field = f;
+    RenderSettings& settings = s;
+    const auto problem = [&field](const std::string& t) {
+      RenderSettings scratch;
+      return set_from_text(field, t, scratch);
+    };
+    return add(app.add_option_function<std::string>(
+                      f.option, [&field, &settings](const std::string& t) { set_from_text(field, t, settings); },
+                      f.help)
+                   ->check(refusing(f.option, problem)));
+  }
+};
 
 void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_flag("--headless", o.headless,
@@ -141,7 +177,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Viewer script: after --edit-after K passes, orbit the camera by dx,dy radians "
                  "(as a left drag)");
   app.add_option("--edit-toggle", o.edit_toggle,
-                 "Viewer script: after --edit-after K passes, switch indirect, aa or fresnel");
+                 "Viewer script: after --edit-after K passes, switch a boolean setting: " +
+                     boolean_setting_keys());
   app.add_option("--edit-log", o.edit_log,
                  "Viewer: write a line per drawn frame and per edit (times, generations, "
                  "samples) to this file, for bench/viewer_latency.sh");
@@ -207,14 +244,18 @@ std::string single_dash_option(int argc, char** argv, const CLI::App& app) {
   return {};
 }
 
+// "--frames" last, with no value after it: "--frames: needs a value".
+std::string missing_value(int argc, char** argv, const CLI::App& app) {
+  const std::string last = argc > 1 ? argv[argc - 1] : "";
+  if (last.rfind("--", 0) != 0) return {};
+  const CLI::Option* opt = app.get_option_no_throw(last);
+  if (!opt || opt->get_items_expected_min() == 0) return {};
+  return last + ": needs a value (see --help)";
+}
+
 // A CLI11 error as one line: "--frames abc: expected an integer".
 std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
-  std::string m = e.what();
-  if (dynamic_cast<const CLI::ValidationError*>(&e)) {
-    // "NAME: VALUE: why" from int_in / number_in reads "NAME VALUE: why".
-    const auto k = m.find(": ");
-    if (k != std::string::npos && m.find(": ", k + 2) != std::string::npos) m.replace(k, 2, " ");
-  }
+  if (dynamic_cast<const BadValue*>(&e)) return e.what();
   if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     std::vector<std::string> extras = app.remaining();
     if (!extras.empty()) {
@@ -227,10 +268,13 @@ std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
       return "unexpected argument " + a + " (options start with --; see --help)";
     }
   }
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find(" missing") != std::string::npos)
-    return m.substr(0, m.find(':')) + ": needs a value (see --help)";
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find("At Most 1") != std::string::npos)
-    return m.substr(0, m.find(':')) + ": given more than once; give it once";
+  // A value missing at the end is found before parsing (missing_value); the
+  // other mismatch is a one-value option given twice.
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e))
+    for (const CLI::Option* opt : app.get_options())
+      if (opt->count() > 1 && opt->get_items_expected_max() == 1)
+        return opt->get_name() + ": given more than once; give it once";
+  std::string m = e.what();
   std::replace(m.begin(), m.end(), '\n', ' ');
   return m;
 }
@@ -274,22 +318,27 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
   app.set_version_flag("--version", "whisker " WHISKER_VERSION);
   add_app_options(app, out);
+  bool man = false;
+  app.add_flag("--man-settings", man, "Print the settings' part of the man page")->group("");
   // One line, like every other refusal: "whisker: --frames: ...".
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "whisker: " + cut_for_message(e.what(), 1000) + " (see --help)\n";
   });
   const auto fields = setting_fields();
-  std::vector<std::string> texts(fields.size());
-  std::vector<CLI::Option*> options(fields.size());
-  for (std::size_t i = 0; i < fields.size(); ++i)
-    options[i] = app.add_option(fields[i].option, texts[i], fields[i].help)
-                     ->type_name(std::visit(TypeName{fields[i]}, fields[i].member));
+  std::vector<CLI::Option*> options;
+  for (const SettingField& f : fields)
+    options.push_back(std::visit(SettingOption{app, f, out.settings}, f.member));
   if (const std::string why = single_dash_option(argc, argv, app); !why.empty())
     return usage_error(why);
+  if (const std::string why = missing_value(argc, argv, app); !why.empty()) return usage_error(why);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
+  }
+  if (man) {
+    std::fputs(settings_man_page().c_str(), stdout);
+    return 0;
   }
   // An option given "" is an error, not an option left out (--out "" beside
   // --stats wrote no image, silently).
@@ -302,12 +351,8 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   if (const std::string why = apply_file_argument(out, app.count("FILE") > 0, app.count("--scene") > 0);
       !why.empty())
     return usage_error(why);
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (options[i]->count() == 0) continue;
-    if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())
-      return usage_error(std::string(fields[i].option) + " " + cut_for_message(texts[i]) + ": " + why);
-    out.given.push_back(&fields[i]);
-  }
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (options[i]->count() > 0) out.given.push_back(&fields[i]);
   return std::nullopt;
 }
 
@@ -322,6 +367,8 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
   app.add_flag("--partial", o.partial,
                "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
+  if (const std::string why = missing_value(argc, argv, app); !why.empty())
+    return usage_error("merge " + why);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -49,12 +49,6 @@ bool same_file(const std::string& a, const std::string& b) {
   return !ea && !eb && ca == cb;
 }
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   const RenderSettings& s = scene.settings;
   // One rule for where a render stops: --frames N passes, else the target.
@@ -130,9 +124,8 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
         return std::string("--out-denoised with ") + option +
                ": parts keep no feature buffers; denoise a whole render";
   }
-  if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
-      cl.edit_toggle != "fresnel")
-    return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
+  if (!cl.edit_toggle.empty() && !boolean_setting(cl.edit_toggle))
+    return "--edit-toggle " + cl.edit_toggle + ": expected " + boolean_setting_keys();
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
