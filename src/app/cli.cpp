@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -204,21 +203,89 @@ void add_app_options(CLI::App& app, CommandLine& o) {
             0.0, 1e9);
 }
 
-// Levenshtein distance, for "did you mean" hints.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
-      diag = up;
-    }
-  }
-  return row[b.size()];
+// What was given for `option` (its first value).
+std::string given_text(const CLI::App& app, const char* option) {
+  const auto& r = app.get_option(option)->results();
+  return r.empty() ? std::string() : cut_for_message(r.front());
 }
+
+// Options that go together, or not: CLI11 refuses the command line
+// (->needs, ->excludes), and the first rule broken says why in Whisker's
+// words (one_line_error).
+struct Pairing {
+  const char* option;
+  const char* other;
+  bool needs;  // `option` needs `other`; else it excludes it
+  std::string (*why)(const CLI::App& app);
+};
+
+std::string needs_viewer(const char* option) {
+  return std::string(option) + " needs the viewer; drop --headless";
+}
+std::string no_parts(const char* option) {
+  return std::string("--out-denoised with ") + option +
+         ": parts keep no feature buffers; denoise a whole render";
+}
+std::string needs_headless(const CLI::App&) {
+  return "--samples, --resume, --out-sum and --checkpoint need --headless";
+}
+
+const Pairing kPairings[] = {
+    {"--frames", "--target-spp", false,
+     [](const CLI::App& a) {
+       return "--frames " + given_text(a, "--frames") + " and --target-spp " +
+              given_text(a, "--target-spp") + " both set the samples per pixel; give one";
+     }},
+    {"--samples", "--target-spp", false,
+     [](const CLI::App& a) {
+       return "--samples " + given_text(a, "--samples") + " sets the samples per pixel; drop --target-spp";
+     }},
+    {"--samples", "--frames", false,
+     [](const CLI::App&) {
+       return std::string("--samples A:B sets the passes (of --spp samples); drop --frames");
+     }},
+    {"--out-denoised", "--headless", true,
+     [](const CLI::App&) { return std::string("--out-denoised needs --headless"); }},
+    {"--out-denoised", "--samples", false, [](const CLI::App&) { return no_parts("--samples"); }},
+    {"--out-denoised", "--resume", false, [](const CLI::App&) { return no_parts("--resume"); }},
+    {"--out-denoised", "--out-sum", false, [](const CLI::App&) { return no_parts("--out-sum"); }},
+    {"--screenshot", "--headless", false, [](const CLI::App&) { return needs_viewer("--screenshot"); }},
+    {"--edit-after", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-after"); }},
+    {"--edit-light", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-light"); }},
+    {"--edit-orbit", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-orbit"); }},
+    {"--edit-toggle", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-toggle"); }},
+    {"--edit-log", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-log"); }},
+    {"--samples", "--headless", true, needs_headless},
+    {"--resume", "--headless", true, needs_headless},
+    {"--out-sum", "--headless", true, needs_headless},
+    {"--checkpoint", "--headless", true, needs_headless},
+    {"--checkpoint", "--out-sum", true,
+     [](const CLI::App&) { return std::string("--checkpoint needs --out-sum (the file it keeps up to date)"); }},
+    {"--screenshot", "--frames", true,
+     [](const CLI::App&) { return std::string("--screenshot needs --frames N"); }},
+};
+
+void pair_options(CLI::App& app) {
+  for (const Pairing& p : kPairings) {
+    CLI::Option* other = app.get_option(p.other);
+    if (p.needs)
+      app.get_option(p.option)->needs(other);
+    else
+      app.get_option(p.option)->excludes(other);
+  }
+}
+
+// The first rule of kPairings the command line breaks, or "".
+std::string broken_pairing(const CLI::App& app) {
+  const auto given = [&app](const char* name) {
+    const CLI::Option* o = app.get_option_no_throw(name);
+    return o && o->count() > 0;
+  };
+  for (const Pairing& p : kPairings)
+    if (given(p.option) && (p.needs ? !given(p.other) : given(p.other))) return p.why(app);
+  return {};
+}
+
 
 // The option names of `app` ("--frames", ...).
 std::vector<std::string> option_names(const CLI::App& app) {
@@ -256,6 +323,8 @@ std::string missing_value(int argc, char** argv, const CLI::App& app) {
 // A CLI11 error as one line: "--frames abc: expected an integer".
 std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
   if (dynamic_cast<const BadValue*>(&e)) return e.what();
+  if (dynamic_cast<const CLI::ExcludesError*>(&e) || dynamic_cast<const CLI::RequiresError*>(&e))
+    if (const std::string why = broken_pairing(app); !why.empty()) return why;
   if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     std::vector<std::string> extras = app.remaining();
     if (!extras.empty()) {
@@ -281,27 +350,6 @@ std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
 
 }  // namespace
 
-std::string closest(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const std::string& c : candidates) {
-    if (const std::size_t d = edit_distance(word, c); d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  return best;
-}
-
-int usage_error(const std::string& message) {
-  // What a message quotes is cut where it is built; this bounds the rest.
-  constexpr std::size_t kMax = 4000;
-  // Control characters of anything echoed (a path with a line break, an
-  // escape sequence in --out) are escaped here, once for every refusal.
-  const std::string shown = cut_for_message(message, kMax);
-  std::fprintf(stderr, "whisker: %s\n", shown.c_str());
-  return kUsageError;
-}
 
 namespace {
 
@@ -328,6 +376,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   std::vector<CLI::Option*> options;
   for (const SettingField& f : fields)
     options.push_back(std::visit(SettingOption{app, f, out.settings}, f.member));
+  pair_options(app);
   if (const std::string why = single_dash_option(argc, argv, app); !why.empty())
     return usage_error(why);
   if (const std::string why = missing_value(argc, argv, app); !why.empty()) return usage_error(why);
@@ -377,35 +426,6 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   if (app.count("--stats") && o.stats_json.empty())
     return usage_error("merge --stats: needs a value, got \"\" (see --help)");
   return std::nullopt;
-}
-
-std::string apply_command_line(const CommandLine& cl, Scene& scene) {
-  for (const SettingField* f : cl.given) copy_field(*f, cl.settings, scene.settings);
-  // --mesh replaces the scene's meshes; with none, it would be ignored silently.
-  if (!cl.mesh.empty() && scene.meshes.empty())
-    return "--mesh " + cut_for_message(cl.mesh) + ": the scene " + cut_for_message(scene.source_path) +
-           " has no meshes to replace";
-  if (!cl.light.empty()) {
-    const auto v = parse_point(cl.light);
-    if (!v) return "--light " + cl.light + ": expected three finite numbers x,y,z";
-    for (int a = 0; a < 3; ++a)
-      if (!(std::fabs((*v)[a]) <= kMaxCoordinate))
-        return "--light " + cl.light + ": coordinates must be in [-1e7, 1e7]";
-    scene.light.position = *v;
-  }
-  if (cl.intensity) scene.light.intensity = *cl.intensity;
-  return {};
-}
-
-bool given(const CommandLine& cl, const char* option) {
-  return std::any_of(cl.given.begin(), cl.given.end(),
-                     [&](const SettingField* f) { return std::string(f->option) == option; });
-}
-
-std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& s) {
-  const std::uint64_t spp = std::uint64_t(std::max(s.spp, 1));
-  if (cl.frames > 0) return std::uint64_t(cl.frames) * spp;
-  return s.target_spp > 0 ? std::uint64_t(s.target_spp) : spp;
 }
 
 }  // namespace whisker
