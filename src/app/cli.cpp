@@ -53,6 +53,17 @@ CLI::Validator refusing(const std::string& option,
       "");
 }
 
+// A word of `words` (as CLI::IsMember, in Whisker's words: "expected scene
+// or display").
+CLI::Validator one_of(const std::string& option, std::vector<std::string> words) {
+  std::string list;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return refusing(option, [words, list](const std::string& t) {
+    return std::find(words.begin(), words.end(), t) != words.end() ? std::string() : "expected " + list;
+  });
+}
+
 // An integer option in [lo, hi], read by the one integer reader (settings.h).
 CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
   const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
@@ -165,7 +176,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "outputs stay as they are), with its estimated error in the stats");
   app.add_option("--denoiser", o.denoiser,
                  "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of("--denoiser", {"quality", "fast"}));
   app.add_option("--screenshot", o.screenshot,
                  "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
@@ -177,7 +189,10 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "(as a left drag)");
   app.add_option("--edit-toggle", o.edit_toggle,
                  "Viewer script: after --edit-after K passes, switch a boolean setting: " +
-                     boolean_setting_keys());
+                     boolean_setting_keys())
+      ->check(refusing("--edit-toggle", [](const std::string& t) {
+        return boolean_setting(t) ? std::string() : "expected " + boolean_setting_keys();
+      }));
   app.add_option("--edit-log", o.edit_log,
                  "Viewer: write a line per drawn frame and per edit (times, generations, "
                  "samples) to this file, for bench/viewer_latency.sh");
@@ -190,7 +205,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_option("--float-units", o.float_units,
                  "--out-float values: scene (radiance) or display (1.0 = the PNG's white, "
                  "255^2.2 radiance)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of("--float-units", {"scene", "display"}));
   app.add_option("--samples", o.samples,
                  "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
   app.add_option("--resume", o.resume,

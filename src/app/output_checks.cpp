@@ -100,10 +100,6 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
     if (ext == ".exr" && !have_exr())
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
-  if (cl.float_units != "scene" && cl.float_units != "display")
-    return "--float-units " + cl.float_units + ": expected scene or display";
-  if (cl.denoiser != "quality" && cl.denoiser != "fast")
-    return "--denoiser " + cl.denoiser + ": expected quality or fast";
   if (!cl.out_denoised.empty()) {
     const auto ext = lower_extension(cl.out_denoised);
     if (ext != ".png" && ext != ".pfm" && ext != ".exr")
@@ -111,8 +107,6 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
     if (ext == ".exr" && !have_exr())
       return "--out-denoised " + cl.out_denoised + ": this build has no OpenEXR; use .pfm";
   }
-  if (!cl.edit_toggle.empty() && !boolean_setting(cl.edit_toggle))
-    return "--edit-toggle " + cl.edit_toggle + ": expected " + boolean_setting_keys();
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
   if (!cl.edit_light.empty() && !parse_point(cl.edit_light))
