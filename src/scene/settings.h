@@ -1,7 +1,9 @@
 // Render settings and their schema: one table row per setting gives its name,
 // type, range, help text and member. The scene-file reader and writer, the
-// command line, the stats JSON and the viewer's change detection all read
-// that table, so a new setting is a member here and a row in settings.cpp.
+// command line (its typed options, --help, --edit-toggle), the man page
+// (whisker --man-settings), the stats JSON and EXR header, the viewer's
+// checkboxes and change detection all read that table, so a new setting is
+// a member here and a row in settings.cpp.
 #pragma once
 
 #include <cstdint>
@@ -129,7 +131,9 @@ std::string value_syntax(const SettingField& f);
 std::string value_text(const SettingField& f, const RenderSettings& s);
 
 // Parses a command-line value of `f` into `s`; returns what is wrong ("" if
-// nothing), to follow "OPTION VALUE: ".
+// nothing), to follow "OPTION VALUE: ". The command line's typed options
+// check their text with the same readers (read_integer, the enum tables);
+// its lists (split, split_weights) are read by this.
 std::string set_from_text(const SettingField& f, std::string_view text, RenderSettings& s);
 // Copies field `f` from `from` to `to`.
 void copy_field(const SettingField& f, const RenderSettings& from, RenderSettings& to);
