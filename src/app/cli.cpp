@@ -177,7 +177,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_option("--denoiser", o.denoiser,
                  "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
       ->capture_default_str()
-      ->check(one_of("--denoiser", {"quality", "fast"}));
+      ->check(one_of("--denoiser", {"quality", "fast"}))
+      ->type_name("quality|fast");
   app.add_option("--screenshot", o.screenshot,
                  "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
@@ -192,7 +193,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                      boolean_setting_keys())
       ->check(refusing("--edit-toggle", [](const std::string& t) {
         return boolean_setting(t) ? std::string() : "expected " + boolean_setting_keys();
-      }));
+      }))
+      ->type_name("NAME");
   app.add_option("--edit-log", o.edit_log,
                  "Viewer: write a line per drawn frame and per edit (times, generations, "
                  "samples) to this file, for bench/viewer_latency.sh");
@@ -206,7 +208,8 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "--out-float values: scene (radiance) or display (1.0 = the PNG's white, "
                  "255^2.2 radiance)")
       ->capture_default_str()
-      ->check(one_of("--float-units", {"scene", "display"}));
+      ->check(one_of("--float-units", {"scene", "display"}))
+      ->type_name("scene|display");
   app.add_option("--samples", o.samples,
                  "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
   app.add_option("--resume", o.resume,
