@@ -15,12 +15,32 @@
 #include <unistd.h>
 
 #include "io/image_io.h"
+#include "scene/scene_io.h"
+#include "scene/settings_json.h"
 #include "sanitized.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
 
 namespace {
+
+// A value of `f` other than its default, as the command line writes it.
+struct OtherValue {
+  const SettingField& f;
+  std::string operator()(bool RenderSettings::*m) const { return RenderSettings{}.*m ? "off" : "on"; }
+  std::string operator()(int RenderSettings::*) const { return std::to_string(int(f.lo) + 1); }
+  std::string operator()(std::uint64_t RenderSettings::*) const { return std::to_string(int(f.lo) + 1); }
+  template <NamedEnum E>
+  std::string operator()(E RenderSettings::*m) const {
+    for (const auto& n : enum_names(E{}))
+      if (n.value != RenderSettings{}.*m) return n.name;
+    return "";
+  }
+  std::string operator()(std::vector<int> RenderSettings::*) const { return "3,2"; }
+  std::string operator()(vec3 RenderSettings::*) const { return f.example; }
+};
+
+std::string other_value(const SettingField& f) { return std::visit(OtherValue{f}, f.member); }
 
 struct Outcome {
   int code = -1;
@@ -390,4 +410,64 @@ TEST_F(CommandLineE2E, OutputFolderProblemsKeepTheirReason) {
     ASSERT_GE(r.err.size(), reason.size());
     EXPECT_EQ(r.err.substr(r.err.size() - reason.size()), reason) << r.err;
   }
+}
+
+// The settings table drives the command line, the scene file, the stats, the
+// EXR header and the man page: every row, given a value other than its
+// default on the command line, comes back with that value from the stats
+// and from a scene file written and read again, and is named in --help,
+// the EXR header and the man page.
+TEST_F(CommandLineE2E, EverySettingOfTheTableWalksThroughEveryOutput) {
+  std::string args = "--headless --quiet --scene " + scene(8, 8, 1, 1) + " --stats " + f("s.json");
+  for (const SettingField& row : setting_fields()) {
+    ASSERT_NE(other_value(row), value_text(row, RenderSettings{})) << row.key;
+    args += std::string(" ") + row.option + " " + other_value(row);
+  }
+  const bool exr = have_exr();
+  const Outcome r = run(args + (exr ? " --out-float " + f("a.exr") : std::string()));
+  ASSERT_EQ(r.code, 0) << args << "\n" << r.err;
+  const nlohmann::json given = stats()["settings"];
+  const Scene read = parse_scene(nlohmann::json{{"settings", given}}.dump(), "s.json");
+  const Scene again =
+      parse_scene(nlohmann::json{{"settings", settings_to_json(read.settings)}}.dump(), "t.json");
+  const std::string help = run("--help").out, exr_text = exr ? slurp(f("a.exr")) : "";
+  for (const SettingField& row : setting_fields()) {
+    EXPECT_EQ(value_text(row, read.settings), other_value(row)) << row.key;
+    EXPECT_EQ(value_text(row, again.settings), other_value(row)) << row.key;
+    EXPECT_NE(help.find(std::string(row.option) + " " + value_syntax(row)), std::string::npos)
+        << row.option;
+    if (exr) {
+      EXPECT_NE(exr_text.find("\"" + std::string(row.key) + "\":"), std::string::npos) << row.key;
+    }
+    // A boolean is a word --edit-toggle takes: with --headless the refusal
+    // is that the script needs the viewer, not the word.
+    if (std::holds_alternative<bool RenderSettings::*>(row.member)) {
+      EXPECT_NE(run(std::string("--headless --edit-toggle ") + row.key).err.find("needs the viewer"),
+                std::string::npos)
+          << row.key;
+    }
+  }
+}
+
+// The man page's settings part is what `whisker --man-settings` writes from
+// the table (scripts/update_man.sh puts it there): a row missing from the
+// page, or a range changed in the table only, fails here.
+TEST_F(CommandLineE2E, ManPageListsEverySettingWithItsValues) {
+  const Outcome r = run("--man-settings");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string page = slurp(fs::path(WHISKER_ASSETS_DIR).parent_path() / "packaging" / "whisker.1");
+  const std::string begin = "edit the table, not these lines.\n", end = ".\\\" END SETTINGS";
+  const std::size_t a = page.find(begin), b = page.find(end);
+  ASSERT_NE(a, std::string::npos);
+  ASSERT_NE(b, std::string::npos);
+  EXPECT_EQ(page.substr(a + begin.size(), b - a - begin.size()), r.out)
+      << "packaging/whisker.1 differs from the settings table: run scripts/update_man.sh build/whisker";
+  auto roff = [](std::string t) {
+    for (std::size_t k = 0; (k = t.find('-', k)) != std::string::npos; k += 2) t.insert(k, "\\");
+    return t;
+  };
+  for (const SettingField& row : setting_fields())
+    EXPECT_NE(r.out.find(".BI " + roff(row.option) + " \" " + roff(value_syntax(row)) + "\""),
+              std::string::npos)
+        << row.option;
 }

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -25,32 +24,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// "on|off", "brute|bbox|midpoint|sah", "INT in [1, 65536]": the value an
-// option takes, for --help.
-struct TypeName {
-  const SettingField& f;
-  std::string bounds(double hi) const {
-    std::ostringstream s;
-    s << std::setprecision(12) << " in [" << f.lo << ", " << hi << "]";
-    return s.str();
-  }
-  std::string operator()(bool RenderSettings::*) const { return "on|off"; }
-  std::string operator()(int RenderSettings::*) const {
-    return "INT" + bounds(f.option_hi > 0 ? f.option_hi : f.hi);
-  }
-  std::string operator()(std::uint64_t RenderSettings::*) const { return "UINT"; }
-  template <NamedEnum E>
-  std::string operator()(E RenderSettings::*) const {
-    std::string s;
-    for (const auto& n : enum_names(E{})) s += std::string(s.empty() ? "" : "|") + n.name;
-    return s;
-  }
-  std::string operator()(std::vector<int> RenderSettings::*) const {
-    return std::string("INT,... e.g. ") + f.example;
-  }
-  std::string operator()(vec3 RenderSettings::*) const { return "R,G,B each" + bounds(f.hi); }
-};
-
 std::string number_text(double v) {
   std::ostringstream s;
   s << std::setprecision(12) << v;
@@ -59,47 +32,120 @@ std::string number_text(double v) {
   return t;
 }
 
-// An integer option in [lo, hi]. The message reads "VALUE: why"; the parser
-// puts the option's name in front (one_line_error).
-CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
-  const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
-  const CLI::Validator v(
-      [=](std::string& text) -> std::string {
-        long long v = 0;
-        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-        if (text.empty() || end != text.data() + text.size() ||
-            (ec != std::errc() && ec != std::errc::result_out_of_range))
-          return text + ": expected an integer";
-        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
-          return text + ": must be in " + range;
+// A refusal of an option's value, worded in full: "--frames abc: expected
+// an integer". Thrown from a check while CLI11 parses, it ends the parse as
+// CLI11's own errors do, and is printed as it is (parse_failure).
+class BadValue : public CLI::ParseError {
+ public:
+  explicit BadValue(const std::string& message)
+      : CLI::ParseError("BadValue", message, kUsageError) {}
+};
+
+// A check of `option`'s value: `why` says what is wrong with a text, or "".
+CLI::Validator refusing(const std::string& option,
+                        std::function<std::string(const std::string&)> why) {
+  return CLI::Validator(
+      [option, why](std::string& text) -> std::string {
+        if (const std::string w = why(text); !w.empty())
+          throw BadValue(option + " " + cut_for_message(text) + ": " + w);
         return {};
       },
       "");
-  return option->check(v)->type_name("INT in " + range);
 }
 
-// A finite number in [lo, hi], message as int_in's.
+// A word of `words` (as CLI::IsMember, in Whisker's words: "expected scene
+// or display").
+CLI::Validator one_of(const std::string& option, std::vector<std::string> words) {
+  std::string list;
+  for (std::size_t i = 0; i < words.size(); ++i)
+    list += (i == 0 ? "" : i + 1 == words.size() ? " or " : ", ") + words[i];
+  return refusing(option, [words, list](const std::string& t) {
+    return std::find(words.begin(), words.end(), t) != words.end() ? std::string() : "expected " + list;
+  });
+}
+
+// An integer option in [lo, hi], read by the one integer reader (settings.h).
+CLI::Option* int_in(CLI::Option* option, long long lo, long long hi) {
+  const std::string range = "[" + number_text(double(lo)) + ", " + number_text(double(hi)) + "]";
+  return option
+      ->check(refusing(option->get_name(),
+                       [=](const std::string& text) {
+                         long long v = 0;
+                         return read_integer(text, lo, hi, v);
+                       }))
+      ->type_name("INT in " + range);
+}
+
+// What is wrong with `text` as a finite number in [lo, hi] ("" if nothing).
+std::string number_problem(const std::string& text, double lo, double hi) {
+  const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
+  double v = 0.0;
+  if (!read_number(text, v)) {
+    // In full a number, but past double's range (1e400): a range error.
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
+      return "must be in " + range;
+    return "expected a number";
+  }
+  return v < lo || v > hi ? "must be in " + range : std::string();
+}
+
+// A number option in [lo, hi], read by the one number reader (settings.h).
 CLI::Option* number_in(CLI::Option* option, double lo, double hi) {
   const std::string range = "[" + number_text(lo) + ", " + number_text(hi) + "]";
-  const CLI::Validator v(
-      [=](std::string& text) -> std::string {
-        // The one number reader of options and their lists (settings.h).
-        double v = 0.0;
-        if (!read_number(text, v)) {
-          // In full a number, but past double's range (1e400): a range error.
-          double big = 0.0;
-          const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), big);
-          if (!text.empty() && end == text.data() + text.size() && ec == std::errc::result_out_of_range)
-            return text + ": must be in " + range;
-          return text + ": expected a number";
-        }
-        if (v < lo || v > hi)
-          return text + ": must be in " + range;
-        return {};
-      },
-      "");
-  return option->check(v)->type_name("NUMBER in " + range);
+  return option
+      ->check(refusing(option->get_name(),
+                       [=](const std::string& text) { return number_problem(text, lo, hi); }))
+      ->type_name("NUMBER in " + range);
 }
+
+// A settings option, typed as its member: CLI11 converts the text into the
+// member once a check has accepted it (enum names turned into their values
+// first). Lists are read by the table's own reader.
+struct SettingOption {
+  CLI::App& app;
+  const SettingField& f;
+  RenderSettings& s;
+  CLI::Option* add(CLI::Option* o) const { return o->type_name(value_syntax(f)); }
+  CLI::Option* operator()(bool RenderSettings::*m) const {
+    const auto on_off = [](const std::string& t) {
+      return t == "on" || t == "off" ? std::string() : "expected on or off";
+    };
+    return add(app.add_option(f.option, s.*m, f.help)->check(refusing(f.option, on_off)));
+  }
+  template <class T>
+    requires std::is_integral_v<T>
+  CLI::Option* operator()(T RenderSettings::*m) const {
+    const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
+    return add(int_in(app.add_option(f.option, s.*m, f.help), (long long)f.lo, (long long)hi));
+  }
+  template <NamedEnum E>
+  CLI::Option* operator()(E RenderSettings::*m) const {
+    const CLI::Validator by_name(
+        [option = std::string(f.option)](std::string& text) -> std::string {
+          E e{};
+          if (!parse(text, e))
+            throw BadValue(option + " " + cut_for_message(text) + ": expected " + name_list(e));
+          text = std::to_string(int(e));
+          return {};
+        },
+        "");
+    return add(app.add_option<E, std::underlying_type_t<E>>(f.option, s.*m, f.help)->transform(by_name));
+  }
+  template <class T>
+  CLI::Option* operator()(T RenderSettings::*) const {
+    const SettingField& field = f;
+    RenderSettings& settings = s;
+    const auto problem = [&field](const std::string& t) {
+      RenderSettings scratch;
+      return set_from_text(field, t, scratch);
+    };
+    return add(app.add_option_function<std::string>(
+                      f.option, [&field, &settings](const std::string& t) { set_from_text(field, t, settings); },
+                      f.help)
+                   ->check(refusing(f.option, problem)));
+  }
+};
 
 void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_flag("--headless", o.headless,
@@ -130,7 +176,9 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "outputs stay as they are), with its estimated error in the stats");
   app.add_option("--denoiser", o.denoiser,
                  "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of("--denoiser", {"quality", "fast"}))
+      ->type_name("quality|fast");
   app.add_option("--screenshot", o.screenshot,
                  "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
@@ -141,7 +189,12 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Viewer script: after --edit-after K passes, orbit the camera by dx,dy radians "
                  "(as a left drag)");
   app.add_option("--edit-toggle", o.edit_toggle,
-                 "Viewer script: after --edit-after K passes, switch indirect, aa or fresnel");
+                 "Viewer script: after --edit-after K passes, switch a boolean setting: " +
+                     boolean_setting_keys())
+      ->check(refusing("--edit-toggle", [](const std::string& t) {
+        return boolean_setting(t) ? std::string() : "expected " + boolean_setting_keys();
+      }))
+      ->type_name("NAME");
   app.add_option("--edit-log", o.edit_log,
                  "Viewer: write a line per drawn frame and per edit (times, generations, "
                  "samples) to this file, for bench/viewer_latency.sh");
@@ -154,7 +207,9 @@ void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_option("--float-units", o.float_units,
                  "--out-float values: scene (radiance) or display (1.0 = the PNG's white, "
                  "255^2.2 radiance)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(one_of("--float-units", {"scene", "display"}))
+      ->type_name("scene|display");
   app.add_option("--samples", o.samples,
                  "Headless: render sample indices A to B-1 of every pixel (A:B), in passes of --spp");
   app.add_option("--resume", o.resume,
@@ -167,21 +222,89 @@ void add_app_options(CLI::App& app, CommandLine& o) {
             0.0, 1e9);
 }
 
-// Levenshtein distance, for "did you mean" hints.
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diag = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
-      diag = up;
-    }
-  }
-  return row[b.size()];
+// What was given for `option` (its first value).
+std::string given_text(const CLI::App& app, const char* option) {
+  const auto& r = app.get_option(option)->results();
+  return r.empty() ? std::string() : cut_for_message(r.front());
 }
+
+// Options that go together, or not: CLI11 refuses the command line
+// (->needs, ->excludes), and the first rule broken says why in Whisker's
+// words (one_line_error).
+struct Pairing {
+  const char* option;
+  const char* other;
+  bool needs;  // `option` needs `other`; else it excludes it
+  std::string (*why)(const CLI::App& app);
+};
+
+std::string needs_viewer(const char* option) {
+  return std::string(option) + " needs the viewer; drop --headless";
+}
+std::string no_parts(const char* option) {
+  return std::string("--out-denoised with ") + option +
+         ": parts keep no feature buffers; denoise a whole render";
+}
+std::string needs_headless(const CLI::App&) {
+  return "--samples, --resume, --out-sum and --checkpoint need --headless";
+}
+
+const Pairing kPairings[] = {
+    {"--frames", "--target-spp", false,
+     [](const CLI::App& a) {
+       return "--frames " + given_text(a, "--frames") + " and --target-spp " +
+              given_text(a, "--target-spp") + " both set the samples per pixel; give one";
+     }},
+    {"--samples", "--target-spp", false,
+     [](const CLI::App& a) {
+       return "--samples " + given_text(a, "--samples") + " sets the samples per pixel; drop --target-spp";
+     }},
+    {"--samples", "--frames", false,
+     [](const CLI::App&) {
+       return std::string("--samples A:B sets the passes (of --spp samples); drop --frames");
+     }},
+    {"--out-denoised", "--headless", true,
+     [](const CLI::App&) { return std::string("--out-denoised needs --headless"); }},
+    {"--out-denoised", "--samples", false, [](const CLI::App&) { return no_parts("--samples"); }},
+    {"--out-denoised", "--resume", false, [](const CLI::App&) { return no_parts("--resume"); }},
+    {"--out-denoised", "--out-sum", false, [](const CLI::App&) { return no_parts("--out-sum"); }},
+    {"--screenshot", "--headless", false, [](const CLI::App&) { return needs_viewer("--screenshot"); }},
+    {"--edit-after", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-after"); }},
+    {"--edit-light", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-light"); }},
+    {"--edit-orbit", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-orbit"); }},
+    {"--edit-toggle", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-toggle"); }},
+    {"--edit-log", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-log"); }},
+    {"--samples", "--headless", true, needs_headless},
+    {"--resume", "--headless", true, needs_headless},
+    {"--out-sum", "--headless", true, needs_headless},
+    {"--checkpoint", "--headless", true, needs_headless},
+    {"--checkpoint", "--out-sum", true,
+     [](const CLI::App&) { return std::string("--checkpoint needs --out-sum (the file it keeps up to date)"); }},
+    {"--screenshot", "--frames", true,
+     [](const CLI::App&) { return std::string("--screenshot needs --frames N"); }},
+};
+
+void pair_options(CLI::App& app) {
+  for (const Pairing& p : kPairings) {
+    CLI::Option* other = app.get_option(p.other);
+    if (p.needs)
+      app.get_option(p.option)->needs(other);
+    else
+      app.get_option(p.option)->excludes(other);
+  }
+}
+
+// The first rule of kPairings the command line breaks, or "".
+std::string broken_pairing(const CLI::App& app) {
+  const auto given = [&app](const char* name) {
+    const CLI::Option* o = app.get_option_no_throw(name);
+    return o && o->count() > 0;
+  };
+  for (const Pairing& p : kPairings)
+    if (given(p.option) && (p.needs ? !given(p.other) : given(p.other))) return p.why(app);
+  return {};
+}
+
 
 // The option names of `app` ("--frames", ...).
 std::vector<std::string> option_names(const CLI::App& app) {
@@ -207,14 +330,20 @@ std::string single_dash_option(int argc, char** argv, const CLI::App& app) {
   return {};
 }
 
+// "--frames" last, with no value after it: "--frames: needs a value".
+std::string missing_value(int argc, char** argv, const CLI::App& app) {
+  const std::string last = argc > 1 ? argv[argc - 1] : "";
+  if (last.rfind("--", 0) != 0) return {};
+  const CLI::Option* opt = app.get_option_no_throw(last);
+  if (!opt || opt->get_items_expected_min() == 0) return {};
+  return last + ": needs a value (see --help)";
+}
+
 // A CLI11 error as one line: "--frames abc: expected an integer".
 std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
-  std::string m = e.what();
-  if (dynamic_cast<const CLI::ValidationError*>(&e)) {
-    // "NAME: VALUE: why" from int_in / number_in reads "NAME VALUE: why".
-    const auto k = m.find(": ");
-    if (k != std::string::npos && m.find(": ", k + 2) != std::string::npos) m.replace(k, 2, " ");
-  }
+  if (dynamic_cast<const BadValue*>(&e)) return e.what();
+  if (dynamic_cast<const CLI::ExcludesError*>(&e) || dynamic_cast<const CLI::RequiresError*>(&e))
+    if (const std::string why = broken_pairing(app); !why.empty()) return why;
   if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
     std::vector<std::string> extras = app.remaining();
     if (!extras.empty()) {
@@ -227,37 +356,19 @@ std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
       return "unexpected argument " + a + " (options start with --; see --help)";
     }
   }
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find(" missing") != std::string::npos)
-    return m.substr(0, m.find(':')) + ": needs a value (see --help)";
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e) && m.find("At Most 1") != std::string::npos)
-    return m.substr(0, m.find(':')) + ": given more than once; give it once";
+  // A value missing at the end is found before parsing (missing_value); the
+  // other mismatch is a one-value option given twice.
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e))
+    for (const CLI::Option* opt : app.get_options())
+      if (opt->count() > 1 && opt->get_items_expected_max() == 1)
+        return opt->get_name() + ": given more than once; give it once";
+  std::string m = e.what();
   std::replace(m.begin(), m.end(), '\n', ' ');
   return m;
 }
 
 }  // namespace
 
-std::string closest(const std::string& word, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const std::string& c : candidates) {
-    if (const std::size_t d = edit_distance(word, c); d < best_d) {
-      best_d = d;
-      best = c;
-    }
-  }
-  return best;
-}
-
-int usage_error(const std::string& message) {
-  // What a message quotes is cut where it is built; this bounds the rest.
-  constexpr std::size_t kMax = 4000;
-  // Control characters of anything echoed (a path with a line break, an
-  // escape sequence in --out) are escaped here, once for every refusal.
-  const std::string shown = cut_for_message(message, kMax);
-  std::fprintf(stderr, "whisker: %s\n", shown.c_str());
-  return kUsageError;
-}
 
 namespace {
 
@@ -274,22 +385,28 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   CLI::App app{"Whisker: a progressive path tracer for the report's scenes"};
   app.set_version_flag("--version", "whisker " WHISKER_VERSION);
   add_app_options(app, out);
+  bool man = false;
+  app.add_flag("--man-settings", man, "Print the settings' part of the man page")->group("");
   // One line, like every other refusal: "whisker: --frames: ...".
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return "whisker: " + cut_for_message(e.what(), 1000) + " (see --help)\n";
   });
   const auto fields = setting_fields();
-  std::vector<std::string> texts(fields.size());
-  std::vector<CLI::Option*> options(fields.size());
-  for (std::size_t i = 0; i < fields.size(); ++i)
-    options[i] = app.add_option(fields[i].option, texts[i], fields[i].help)
-                     ->type_name(std::visit(TypeName{fields[i]}, fields[i].member));
+  std::vector<CLI::Option*> options;
+  for (const SettingField& f : fields)
+    options.push_back(std::visit(SettingOption{app, f, out.settings}, f.member));
+  pair_options(app);
   if (const std::string why = single_dash_option(argc, argv, app); !why.empty())
     return usage_error(why);
+  if (const std::string why = missing_value(argc, argv, app); !why.empty()) return usage_error(why);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
+  }
+  if (man) {
+    std::fputs(settings_man_page().c_str(), stdout);
+    return 0;
   }
   // An option given "" is an error, not an option left out (--out "" beside
   // --stats wrote no image, silently).
@@ -302,12 +419,8 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& out) {
   if (const std::string why = apply_file_argument(out, app.count("FILE") > 0, app.count("--scene") > 0);
       !why.empty())
     return usage_error(why);
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    if (options[i]->count() == 0) continue;
-    if (const std::string why = set_from_text(fields[i], texts[i], out.settings); !why.empty())
-      return usage_error(std::string(fields[i].option) + " " + cut_for_message(texts[i]) + ": " + why);
-    out.given.push_back(&fields[i]);
-  }
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (options[i]->count() > 0) out.given.push_back(&fields[i]);
   return std::nullopt;
 }
 
@@ -322,6 +435,8 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
   app.add_flag("--partial", o.partial,
                "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
+  if (const std::string why = missing_value(argc, argv, app); !why.empty())
+    return usage_error("merge " + why);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -330,35 +445,6 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   if (app.count("--stats") && o.stats_json.empty())
     return usage_error("merge --stats: needs a value, got \"\" (see --help)");
   return std::nullopt;
-}
-
-std::string apply_command_line(const CommandLine& cl, Scene& scene) {
-  for (const SettingField* f : cl.given) copy_field(*f, cl.settings, scene.settings);
-  // --mesh replaces the scene's meshes; with none, it would be ignored silently.
-  if (!cl.mesh.empty() && scene.meshes.empty())
-    return "--mesh " + cut_for_message(cl.mesh) + ": the scene " + cut_for_message(scene.source_path) +
-           " has no meshes to replace";
-  if (!cl.light.empty()) {
-    const auto v = parse_point(cl.light);
-    if (!v) return "--light " + cl.light + ": expected three finite numbers x,y,z";
-    for (int a = 0; a < 3; ++a)
-      if (!(std::fabs((*v)[a]) <= kMaxCoordinate))
-        return "--light " + cl.light + ": coordinates must be in [-1e7, 1e7]";
-    scene.light.position = *v;
-  }
-  if (cl.intensity) scene.light.intensity = *cl.intensity;
-  return {};
-}
-
-bool given(const CommandLine& cl, const char* option) {
-  return std::any_of(cl.given.begin(), cl.given.end(),
-                     [&](const SettingField* f) { return std::string(f->option) == option; });
-}
-
-std::uint64_t samples_per_pixel(const CommandLine& cl, const RenderSettings& s) {
-  const std::uint64_t spp = std::uint64_t(std::max(s.spp, 1));
-  if (cl.frames > 0) return std::uint64_t(cl.frames) * spp;
-  return s.target_spp > 0 ? std::uint64_t(s.target_spp) : spp;
 }
 
 }  // namespace whisker

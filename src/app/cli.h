@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/file_name.h"  // lower_extension, for every app/ file
 #include "scene/scene.h"
 
 namespace whisker {
@@ -35,7 +36,7 @@ struct CommandLine {
   int edit_after = -1;
   std::string edit_light;
   std::string edit_orbit;   // "dx,dy" radians, as a left drag
-  std::string edit_toggle;  // "indirect", "aa" or "fresnel"
+  std::string edit_toggle;  // a boolean setting's key ("fresnel")
   std::string edit_log;     // the viewer's event log (bench/viewer_latency.sh)
   bool quiet = false;
   double progress_every = 5.0;      // seconds between progress lines in a log
@@ -71,11 +72,12 @@ bool same_file(const std::string& a, const std::string& b);
 // Whether a settings option (e.g. "--target-spp") was given.
 bool given(const CommandLine& cl, const char* option);
 
-// ".png" of "x.PNG": the extension, lower case.
-std::string lower_extension(const std::string& path);
-
 // The candidate nearest to `word` in edits, or "" if none is close.
 std::string closest(const std::string& word, const std::vector<std::string>& candidates);
+
+// The render settings' options as man-page source, one entry per row of the
+// settings table (printed by the hidden option --man-settings).
+std::string settings_man_page();
 
 // Prints "whisker: MESSAGE" to stderr; returns kUsageError.
 int usage_error(const std::string& message);

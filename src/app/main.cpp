@@ -86,7 +86,6 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   v.threads = cl.threads;
   v.frames = cl.frames;
   v.screenshot_path = cl.screenshot;
-  if (!cl.screenshot.empty() && cl.frames <= 0) return usage_error("--screenshot needs --frames N");
   v.event_log = cl.edit_log;
   const bool any_edit = !cl.edit_light.empty() || !cl.edit_orbit.empty() || !cl.edit_toggle.empty();
   if (cl.edit_after >= 0 || any_edit) {
@@ -205,9 +204,6 @@ int main(int argc, char** argv) {
   if (const std::string why = apply_command_line(cl, scene); !why.empty()) return usage_error(why);
   if (const std::string why = check_outputs(cl, scene); !why.empty())
     return usage_error(why);
-  if (!cl.headless &&
-      (!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0))
-    return usage_error("--samples, --resume, --out-sum and --checkpoint need --headless");
   try {
     if (!cl.headless) install_signal_handlers(false);
     return cl.headless ? headless(cl, scene) : viewer(cl, scene);

@@ -49,20 +49,9 @@ bool same_file(const std::string& a, const std::string& b) {
   return !ea && !eb && ca == cb;
 }
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 std::string check_outputs(const CommandLine& cl, const Scene& scene) {
   const RenderSettings& s = scene.settings;
-  // One rule for where a render stops: --frames N passes, else the target.
-  if (cl.frames > 0 && given(cl, "--target-spp"))
-    return "--frames " + std::to_string(cl.frames) + " and --target-spp " +
-           std::to_string(s.target_spp) + " both set the samples per pixel; give one";
-  if (!cl.samples.empty() && given(cl, "--target-spp"))
-    return "--samples " + cl.samples + " sets the samples per pixel; drop --target-spp";
+  // Which options go together is the parser's (cli.cpp, kPairings).
   // frames x spp samples per pixel must fit the target counter.
   if (cl.frames > 0 && std::uint64_t(cl.frames) * std::uint64_t(s.spp) > (1ull << 30))
     return "--frames " + std::to_string(cl.frames) + " x --spp " + std::to_string(s.spp) +
@@ -111,39 +100,15 @@ std::string check_outputs(const CommandLine& cl, const Scene& scene) {
     if (ext == ".exr" && !have_exr())
       return "--out-float " + cl.out_float + ": this build has no OpenEXR; use .pfm";
   }
-  if (cl.float_units != "scene" && cl.float_units != "display")
-    return "--float-units " + cl.float_units + ": expected scene or display";
-  if (cl.denoiser != "quality" && cl.denoiser != "fast")
-    return "--denoiser " + cl.denoiser + ": expected quality or fast";
   if (!cl.out_denoised.empty()) {
     const auto ext = lower_extension(cl.out_denoised);
     if (ext != ".png" && ext != ".pfm" && ext != ".exr")
       return "--out-denoised " + cl.out_denoised + ": must end in .png, .pfm or .exr";
     if (ext == ".exr" && !have_exr())
       return "--out-denoised " + cl.out_denoised + ": this build has no OpenEXR; use .pfm";
-    if (!cl.headless) return "--out-denoised needs --headless";
-    // Parts carry no feature buffers: a shard or a resumed render has none.
-    for (const auto& [set, option] : {std::pair{!cl.samples.empty(), "--samples"},
-                                      std::pair{!cl.resume.empty(), "--resume"},
-                                      std::pair{!cl.out_sum.empty(), "--out-sum"}})
-      if (set)
-        return std::string("--out-denoised with ") + option +
-               ": parts keep no feature buffers; denoise a whole render";
   }
-  if (!cl.edit_toggle.empty() && cl.edit_toggle != "indirect" && cl.edit_toggle != "aa" &&
-      cl.edit_toggle != "fresnel")
-    return "--edit-toggle " + cl.edit_toggle + ": expected indirect, aa or fresnel";
   if (cl.float_units != "scene" && (cl.out_float.empty() || !cl.headless))
     return "--float-units " + cl.float_units + " is for --headless --out-float";
-  if (cl.headless && !cl.screenshot.empty()) return "--screenshot needs the viewer; drop --headless";
-  // The viewer's scripted edits: a headless render would ignore them silently.
-  const std::pair<bool, const char*> viewer_only[] = {{cl.edit_after >= 0, "--edit-after"},
-                                                      {!cl.edit_light.empty(), "--edit-light"},
-                                                      {!cl.edit_orbit.empty(), "--edit-orbit"},
-                                                      {!cl.edit_toggle.empty(), "--edit-toggle"},
-                                                      {!cl.edit_log.empty(), "--edit-log"}};
-  for (const auto& [set, option] : viewer_only)
-    if (cl.headless && set) return std::string(option) + " needs the viewer; drop --headless";
   if (!cl.edit_light.empty() && !parse_point(cl.edit_light))
     return "--edit-light " + cl.edit_light + ": expected three finite numbers x,y,z";
   if (cl.headless && cl.out_png.empty() && cl.out_float.empty() && cl.stats_json.empty() &&

@@ -97,18 +97,12 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   plan.id = render_identity(scene);
   // --frames N passes of --spp, else the scene's target (samples_per_pixel).
   const std::uint64_t total = samples_per_pixel(cl, scene.settings);
-  if ((!cl.samples.empty() || !cl.resume.empty() || !cl.out_sum.empty() || cl.checkpoint >= 0) &&
-      !cl.headless)
-    return "--samples, --resume, --out-sum and --checkpoint need --headless";
   if (!cl.out_sum.empty() && lower_extension(cl.out_sum) != ".exr")  // x.EXR too, as --out-float
     return "--out-sum " + cl.out_sum + ": must end in .exr";
-  if (cl.checkpoint >= 0 && cl.out_sum.empty())
-    return "--checkpoint needs --out-sum (the file it keeps up to date)";
   if ((!cl.out_sum.empty() || !cl.resume.empty()) && !have_exr())
     return "--out-sum and --resume need OpenEXR, and this build has none";
   SampleRange range{0, total};
   if (!cl.samples.empty()) {
-    if (cl.frames > 0) return "--samples A:B sets the passes (of --spp samples); drop --frames";
     if (!parse_sample_range(cl.samples, range))
       return "--samples " + cl.samples + ": expected A:B with whole numbers A < B, e.g. 0:512";
     if (range.end > kMaxSample)

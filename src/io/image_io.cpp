@@ -1,7 +1,6 @@
 #include "io/image_io.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +18,7 @@
 #endif
 
 #include "io/atomic_file.h"
+#include "scene/file_name.h"
 
 namespace whisker {
 
@@ -132,8 +132,7 @@ void write_exr(const std::string& path, const Image& img, const ImageAttributes&
 
 void write_float_image(const std::string& path, const Image& img,
                        const ImageAttributes& attributes) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));  // x.EXR too
+  const std::string ext = lower_extension(path);  // x.EXR too
   if (ext == ".pfm") return write_pfm(path, img);
   if (ext == ".exr") return write_exr(path, img, attributes);
   throw ImageError(path + ": unknown float image type \"" + ext + "\" (use .pfm or .exr)");

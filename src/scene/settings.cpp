@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -30,10 +31,12 @@ const SettingField kFields[] = {
     {"fresnel", "--fresnel", &R::fresnel, "Fresnel at glass (Schlick): part of the light reflects", 0, 0, 0, "", "Fresnel"},
     {"aa", "--aa", &R::aa, "Anti-aliasing (Gaussian jitter)", 0, 0, 0, "", "anti-aliasing"},
     {"seed", "--seed", &R::seed, "Random seed", 0, 0x1p53},
-    {"target_spp", "--target-spp", &R::target_spp, "Stop at this many samples per pixel (0 = never); headless renders this many unless --frames",
+    {"target_spp", "--target-spp", &R::target_spp, "Stop at this many samples per pixel (0 = never); headless renders this many unless "
+     "--frames (give one of the two)",
      0, 1 << 30},
-    {"accel", "--accel", &R::accel, "Triangle acceleration"},
-    {"sampler", "--sampler", &R::sampler, "Random numbers: independent (the report's) or sobol"},
+    {"accel", "--accel", &R::accel, "Triangle acceleration: none, a bounding box, a BVH split at the middle, or by the "
+     "surface area heuristic"},
+    {"sampler", "--sampler", &R::sampler, "Random numbers: independent (the report's) or sobol (Owen-scrambled Sobol points)"},
     {"zero_cutoff", "--zero-cutoff", &R::zero_cutoff, "End paths whose throughput is zero (same image, less time)", 0, 0, 0, "", "end dark paths"},
     {"split", "--split", &R::split,
      "Indirect paths leaving the 1st, 2nd, ... diffuse hit (1 = the report's)", 0, 0, 0, "4,4"},
@@ -52,23 +55,26 @@ std::string bounds(double lo, double hi) {
   return s.str();
 }
 
-template <class T>
-std::string integer_from_text(const SettingField& f, std::string_view text, T& out) {
-  const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
-  const std::string out_of_range =
-      "must be in " + bounds(f.lo, hi) + ", got " + std::string(text.substr(0, 40));
-  // Read as a signed 64-bit value, so that "-1" is a negative number for an
-  // unsigned setting too (not 2^64 - 1); a value past the 64-bit range is
-  // out of range, not "not an integer".
+// All of `text` a decimal integer, no sign but '-', no space: its value,
+// past the 64-bit range the nearest end of it (so that "-1" is negative
+// for an unsigned setting too, and 1e30 digits are out of range, not "not
+// an integer"); nullopt if not an integer.
+std::optional<long long> whole_integer(std::string_view text) {
   long long v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec == std::errc::result_out_of_range && end == text.data() + text.size())
-    return out_of_range;
-  if (ec != std::errc() || end != text.data() + text.size() || text.empty())
-    return "expected an integer";
-  if (v < static_cast<long long>(f.lo) || v > static_cast<long long>(hi)) return out_of_range;
-  out = T(v);
-  return {};
+  if (text.empty() || end != text.data() + text.size()) return std::nullopt;
+  if (ec == std::errc::result_out_of_range) return text[0] == '-' ? LLONG_MIN : LLONG_MAX;
+  if (ec != std::errc()) return std::nullopt;
+  return v;
+}
+
+template <class T>
+std::string integer_from_text(const SettingField& f, std::string_view text, T& out) {
+  long long v = 0;
+  const double hi = f.option_hi > 0 ? f.option_hi : f.hi;
+  std::string why = read_integer(text, (long long)f.lo, (long long)hi, v);
+  if (why.empty()) out = T(v);
+  return why;
 }
 
 std::string split_from_text(const SettingField& f, std::string_view text, std::vector<int>& out) {
@@ -79,13 +85,12 @@ std::string split_from_text(const SettingField& f, std::string_view text, std::v
   for (std::size_t start = 0;;) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
     const std::string_view item = text.substr(start, comma - start);
-    long long k = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), k);
-    if (item.empty() || end != item.data() + item.size()) return expected;
-    if (ec == std::errc::result_out_of_range || k < 1 || k > kMaxSplitFactor)
+    const auto k = whole_integer(item);
+    if (!k) return expected;
+    if (*k < 1 || *k > kMaxSplitFactor)
       return "factors must be in [1, " + std::to_string(kMaxSplitFactor) + "], got " +
              std::string(item.substr(0, 24));
-    factors.push_back(int(k));
+    factors.push_back(int(*k));
     if (comma == text.size()) break;
     start = comma + 1;
   }
@@ -118,6 +123,15 @@ std::optional<vec3> parse_vec3(std::string_view text) {
   const vec3 f(*v);
   if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(f.z)) return std::nullopt;
   return f;
+}
+
+std::string read_integer(std::string_view text, long long lo, long long hi, long long& out) {
+  const auto v = whole_integer(text);
+  if (!v) return "expected an integer";
+  if (*v < lo || *v > hi)
+    return "must be in " + bounds(double(lo), double(hi)) + ", got " + std::string(text.substr(0, 40));
+  out = *v;
+  return {};
 }
 
 bool read_number(std::string_view text, double& out) {
@@ -169,6 +183,65 @@ std::string set_from_text(const SettingField& f, std::string_view text, RenderSe
     }
   };
   return std::visit(Visit{f, text, s}, f.member);
+}
+
+const SettingField* boolean_setting(std::string_view key) {
+  for (const SettingField& f : kFields)
+    if (key == f.key && std::holds_alternative<bool R::*>(f.member)) return &f;
+  return nullptr;
+}
+
+std::string boolean_setting_keys() {
+  std::vector<const char*> keys;
+  for (const SettingField& f : kFields)
+    if (std::holds_alternative<bool R::*>(f.member)) keys.push_back(f.key);
+  std::string s;
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    s += std::string(i == 0 ? "" : i + 1 == keys.size() ? " or " : ", ") + keys[i];
+  return s;
+}
+
+namespace {
+
+struct Syntax {
+  const SettingField& f;
+  double hi() const { return f.option_hi > 0 ? f.option_hi : f.hi; }
+  std::string operator()(bool R::*) const { return "on|off"; }
+  std::string operator()(int R::*) const { return "INT in " + bounds(f.lo, hi()); }
+  std::string operator()(std::uint64_t R::*) const { return "UINT in " + bounds(f.lo, hi()); }
+  template <NamedEnum E>
+  std::string operator()(E R::*) const {
+    std::string s;
+    for (const auto& n : enum_names(E{})) s += std::string(s.empty() ? "" : "|") + n.name;
+    return s;
+  }
+  std::string operator()(std::vector<int> R::*) const {
+    return std::string("INT,... e.g. ") + f.example;
+  }
+  std::string operator()(vec3 R::*) const { return "R,G,B each in " + bounds(f.lo, f.hi); }
+};
+
+struct Text {
+  const RenderSettings& s;
+  std::string operator()(bool R::*m) const { return s.*m ? "on" : "off"; }
+  std::string operator()(int R::*m) const { return std::to_string(s.*m); }
+  std::string operator()(std::uint64_t R::*m) const { return std::to_string(s.*m); }
+  template <NamedEnum E>
+  std::string operator()(E R::*m) const { return to_string(s.*m); }
+  std::string operator()(std::vector<int> R::*m) const { return split_to_string(s.*m); }
+  std::string operator()(vec3 R::*m) const {
+    std::ostringstream o;
+    o << std::setprecision(9) << (s.*m).x << ',' << (s.*m).y << ',' << (s.*m).z;
+    return o.str();
+  }
+};
+
+}  // namespace
+
+std::string value_syntax(const SettingField& f) { return std::visit(Syntax{f}, f.member); }
+
+std::string value_text(const SettingField& f, const RenderSettings& s) {
+  return std::visit(Text{s}, f.member);
 }
 
 void copy_field(const SettingField& f, const RenderSettings& from, RenderSettings& to) {

@@ -1,7 +1,9 @@
 // Render settings and their schema: one table row per setting gives its name,
 // type, range, help text and member. The scene-file reader and writer, the
-// command line, the stats JSON and the viewer's change detection all read
-// that table, so a new setting is a member here and a row in settings.cpp.
+// command line (its typed options, --help, --edit-toggle), the man page
+// (whisker --man-settings), the stats JSON and EXR header, the viewer's
+// checkboxes and change detection all read that table, so a new setting is
+// a member here and a row in settings.cpp.
 #pragma once
 
 #include <cstdint>
@@ -118,8 +120,20 @@ std::span<const SettingField> setting_fields();
 // The row of `key`; the key must be in the table.
 const SettingField& setting_field(std::string_view key);
 
+// The boolean setting of `key` ("fresnel"), or nullptr if there is none.
+const SettingField* boolean_setting(std::string_view key);
+// "indirect, fresnel, aa, zero_cutoff or connect": the boolean settings' keys.
+std::string boolean_setting_keys();
+// What a command-line value of `f` looks like: "on|off", "INT in [1, 65536]",
+// "brute|bbox|midpoint|sah", "R,G,B each in [0.01, 1]" (--help, the man page).
+std::string value_syntax(const SettingField& f);
+// The value of `f` in `s` as the command line writes it ("on", "4,4").
+std::string value_text(const SettingField& f, const RenderSettings& s);
+
 // Parses a command-line value of `f` into `s`; returns what is wrong ("" if
-// nothing), to follow "OPTION VALUE: ".
+// nothing), to follow "OPTION VALUE: ". The command line's typed options
+// check their text with the same readers (read_integer, the enum tables);
+// its lists (split, split_weights) are read by this.
 std::string set_from_text(const SettingField& f, std::string_view text, RenderSettings& s);
 // Copies field `f` from `from` to `to`.
 void copy_field(const SettingField& f, const RenderSettings& from, RenderSettings& to);
@@ -132,6 +146,12 @@ std::optional<glm::dvec3> parse_point(std::string_view text);
 // too): all of `text` a finite decimal as std::from_chars reads it, so no
 // leading space or '+', no hex, no "nan"; out of double's range is refused.
 bool read_number(std::string_view text, double& out);
+
+// The one reader of an integer typed on the command line: all of `text` a
+// decimal integer (no space, no '+'), in [lo, hi]. Returns what is wrong
+// ("expected an integer", "must be in [lo, hi], got TEXT"), or "" with the
+// value in `out`. A value past the 64-bit range is out of range too.
+std::string read_integer(std::string_view text, long long lo, long long hi, long long& out);
 
 // Limits on RenderSettings::split; returns what is wrong, or "" if nothing.
 constexpr int kMaxSplitFactor = 64, kMaxSplitLevels = 8, kMaxSplitPaths = 4096;

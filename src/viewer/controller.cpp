@@ -1,7 +1,6 @@
 #include "viewer/controller.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -12,6 +11,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "render/film.h"
+#include "scene/file_name.h"
 #include "scene/scene_io.h"
 #include "scene/settings_json.h"
 #include "viewer/display.h"
@@ -27,8 +27,7 @@ std::string scene_label_of(const Scene& scene, const std::string& path) {
 }
 
 void request_for_drop(const std::string& path, PanelRequests& req, std::string& error) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   if (ext == ".json")
     req.load_scene = path;
   else if (ext == ".obj")

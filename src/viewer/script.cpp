@@ -21,9 +21,10 @@ void ScriptedRun::apply_due_edit(ViewerState& s) {
   if (sn.counters.passes < std::uint64_t(std::max(0, edit.after_pass)) && !sn.done) return;
   if (edit.light_position) s.edited.light.position = *edit.light_position;
   if (edit.orbit) orbit(s.edited.camera, float(edit.orbit->x), float(edit.orbit->y));
-  if (edit.toggle == "indirect") s.edited.settings.indirect = !s.edited.settings.indirect;
-  if (edit.toggle == "aa") s.edited.settings.aa = !s.edited.settings.aa;
-  if (edit.toggle == "fresnel") s.edited.settings.fresnel = !s.edited.settings.fresnel;
+  if (const SettingField* f = boolean_setting(edit.toggle)) {
+    bool& on = s.edited.settings.*std::get<bool RenderSettings::*>(f->member);
+    on = !on;
+  }
   ++next_edit_;
 }
 

@@ -20,7 +20,7 @@ struct ScriptedEdit {
   int after_pass = 0;
   std::optional<glm::dvec3> light_position;
   std::optional<glm::dvec2> orbit;  // radians, as orbit() (a left drag)
-  std::string toggle;               // "indirect", "aa" or "fresnel": switched
+  std::string toggle;               // a boolean setting's key ("fresnel"): switched
 };
 
 struct ViewerOptions {
