@@ -111,6 +111,24 @@ TEST(SceneFiles, SyntaxErrorNamesLineAndColumn) {
   EXPECT_NE(e.find("invalid JSON"), std::string::npos) << e;
 }
 
+TEST(SceneFiles, TheReadingPassRefusesKeysGivenTwiceAndDeepNesting) {
+  // A key given twice deep inside is named by its path, arrays indexed.
+  EXPECT_EQ(error_of(R"({"description": [0, {"x": [[{"k": 1}, {"k": 2, "deep": {"a": 1,
+                      "b": [], "a": 2}}]]}]})"),
+            "bad.json: description[1].x[0][1].deep.a: given twice; keep one");
+  // The same key in sibling objects is no duplicate; the document is built.
+  EXPECT_EQ(error_of(R"({"description": [{"k": 1}, {"k": 2}], "name": "n"})"), "(no error)");
+  // A syntax error after a key given twice is the file's first fault.
+  const std::string syntax = error_of("{\"name\": \"a\",\n \"name\": \"b\",}");
+  EXPECT_EQ(syntax.rfind("bad.json:2:", 0), 0u) << syntax;
+  EXPECT_NE(syntax.find("invalid JSON"), std::string::npos) << syntax;
+  // Nesting: 64 levels are read, the 65th is refused where it opens.
+  EXPECT_EQ(error_of("{\"description\":\n" + std::string(63, '[') + std::string(63, ']') + "}"),
+            "(no error)");
+  EXPECT_EQ(error_of("{\"description\":\n" + std::string(64, '[') + std::string(64, ']') + "}"),
+            "bad.json:2:64: arrays and objects nested deeper than 64 levels");
+}
+
 TEST(SceneFiles, BadFieldsAreNamed) {
   struct Case { const char* text; const char* expect; };
   const Case cases[] = {

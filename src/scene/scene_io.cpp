@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/json_fields.h"
-#include "scene/json_prescan.h"
+#include "scene/json_reader.h"
 #include "scene/mesh_io.h"
 #include "scene/scene_memory.h"
 #include "scene/settings_json.h"
@@ -236,22 +236,7 @@ fs::path resolve_mesh(const std::string& path, const fs::path& base_dir,
 
 Scene parse_scene(const std::string& text, const std::string& file, const fs::path& base_dir,
                   const std::string& mesh_override) {
-  check_nesting(text, file);
-  check_document(text, file);  // memory, keys given twice
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    std::string msg = e.what();
-    // Keep nlohmann's description, drop its "[json.exception...] parse error at ...:" prefix.
-    if (auto colon = msg.find(": "); colon != std::string::npos) msg = msg.substr(colon + 2);
-    throw SceneError(file + ":" + line_column(text, e.byte ? e.byte - 1 : 0) +
-                     ": invalid JSON: " + msg);
-  } catch (const json::exception& e) {
-    std::string msg = e.what();  // e.g. a number too large for a double
-    if (auto bracket = msg.find("] "); bracket != std::string::npos) msg = msg.substr(bracket + 2);
-    throw SceneError(file + ": invalid JSON: " + msg);
-  }
+  const json j = read_json(text, file);
 
   Scene scene;
   scene.source_path = file;

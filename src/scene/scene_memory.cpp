@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unordered_set>
 
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include "geometry/mesh.h"
-#include "scene/json_prescan.h"
 #include "scene/scene_error.h"
 
 namespace whisker {
@@ -62,20 +61,6 @@ std::string memory_text(std::uint64_t bytes, bool round_up) {
 std::string memory_refusal(const std::string& what, std::uint64_t need, std::uint64_t have) {
   if (have == 0 || need <= have) return {};  // an unknown machine refuses nothing
   return what + " needs " + memory_text(need, true) + "; this machine has " + memory_text(have, false);
-}
-
-void check_document(const std::string& text, const std::string& file) {
-  const std::uint64_t memory = machine_memory();
-  const std::uint64_t room = memory > text.size() ? memory - text.size() : 0;
-  Prescan pre(memory ? std::size_t(room / kDocumentBytesPerValue) : ~std::size_t(0));
-  // On a syntax error the pass stops: the parse after it names its line.
-  const bool well_formed = nlohmann::json::sax_parse(text, &pre);
-  if (pre.too_many())
-    throw SceneError(file + ": " +
-                     memory_refusal("reading more than " + std::to_string(pre.values() - 1) + " values",
-                                    text.size() + pre.values() * kDocumentBytesPerValue, memory));
-  if (well_formed && !pre.found().empty())
-    throw SceneError(file + ": " + pre.found() + ": given twice; keep one");
 }
 
 void check_render_memory(const Scene& scene, const std::string& file) {

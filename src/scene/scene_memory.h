@@ -27,10 +27,6 @@ std::string memory_text(std::uint64_t bytes, bool round_up);
 // "WHAT needs N; this machine has M" if need > have, else "".
 std::string memory_refusal(const std::string& what, std::uint64_t need, std::uint64_t have);
 
-// Throws SceneError naming `file` if the parsed document of `text` would
-// not fit the machine beside it (one pass, stopped where it would not), or
-// if a key is given twice in one object (the parser would keep the last).
-void check_document(const std::string& text, const std::string& file);
 // Throws SceneError naming `file` if rendering `scene` (its film and its
 // objects) would not fit the machine, naming what it holds.
 void check_render_memory(const Scene& scene, const std::string& file);
