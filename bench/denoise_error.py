@@ -20,20 +20,31 @@ from pfm import read_pfm  # noqa: E402
 TOOL = "denoise_error.py"
 
 
-def block_means(w, h, v, k):
-    """Per channel, the means of the k x k blocks (blocks past the edge dropped)."""
-    bw, bh = w // k, h // k
+def halve(w, h, v):
+    """The means of the 2 x 2 blocks of a w x h image (an odd last row or
+    column dropped), and the new size."""
+    bw, bh = w // 2, h // 2
     out = [0.0] * (bw * bh * 3)
-    for y in range(bh * k):
-        row = (y // k) * bw
-        for x in range(bw * k):
-            i = 3 * (y * w + x)
-            o = 3 * (row + x // k)
-            out[o] += v[i]
-            out[o + 1] += v[i + 1]
-            out[o + 2] += v[i + 2]
-    inv = 1.0 / (k * k)
-    return [s * inv for s in out]
+    for y in range(bh):
+        r0, r1, o = 3 * (2 * y) * w, 3 * (2 * y + 1) * w, 3 * y * bw
+        for x in range(bw):
+            for c in range(3):
+                i = 6 * x + c
+                out[o + 3 * x + c] = 0.25 * (v[r0 + i] + v[r0 + i + 3] + v[r1 + i] + v[r1 + i + 3])
+    return bw, bh, out
+
+
+def pyramid(w, h, v, scales):
+    """Per scale k (powers of 2), the means of the k x k blocks per channel
+    (blocks past the edge dropped): each level the 2 x 2 means of the one
+    before, which are the same blocks."""
+    out, k = {}, 1
+    while k <= max(scales):
+        if k in scales:
+            out[k] = v
+        w, h, v = halve(w, h, v)
+        k *= 2
+    return out
 
 
 def main(argv):
@@ -50,8 +61,10 @@ def main(argv):
     except (OSError, ValueError, KeyError) as e:
         sys.exit(f"{TOOL}: {argv[5]}: no denoised.estimated_mse ({e})")
     print("scale  raw MSE    denoised MSE  denoised/raw  estimated denoised/raw  estimate/true")
-    for k in (1, 2, 4, 8, 16):
-        a, b, raw, dn = (block_means(w, h, v, k) for _, _, v in imgs)
+    scales = (1, 2, 4, 8, 16)
+    levels = [pyramid(w, h, v, scales) for _, _, v in imgs]
+    for k in scales:
+        a, b, raw, dn = (lv[k] for lv in levels)
         n = len(a)
         ref_noise = sum((x - y) ** 2 for x, y in zip(a, b)) / (4 * n)
         ref = [(x + y) / 2 for x, y in zip(a, b)]
@@ -62,7 +75,6 @@ def main(argv):
         est_true = e["denoised"] / err_dn if e and err_dn > 0 else float("nan")
         print(f"{k:3d} px  {err_raw:10.4g} {err_dn:12.4g}  {err_dn / err_raw:12.3f}  "
               f"{est_ratio:22.3f}  {est_true:13.3f}")
-
 
 if __name__ == "__main__":
     main(sys.argv)

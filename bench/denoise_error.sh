@@ -2,7 +2,8 @@
 # The denoiser against a converged Whisker reference, at every scale
 # (bench/denoise_error.py): for each sample count, a render with
 # --out-denoised, its raw and denoised errors at 1-16 px, and how its own
-# estimate compares with the true error.
+# estimate compares with the true error; at the end the denoised/raw ratios
+# as a Markdown table.
 #
 #   bench/denoise_error.sh [BUILD] [SCENE] [REF_SPP] [SPP...]
 #   e.g. bench/denoise_error.sh build cat 1024 4 16 64
@@ -26,12 +27,18 @@ for seed in 101 102; do
   [ -f "$ref" ] || "$bin" --headless --quiet --scene "$scene" --target-spp "$ref_spp" --seed "$seed" \
     --out-float "$ref" >/dev/null
 done
+table="| filter, spp | 1 px | 2 px | 4 px | 8 px | 16 px |
+|---|---|---|---|---|---|"
 for filter in quality fast; do
   for n in "${counts[@]}"; do
     echo "--- $scene, $n spp, $filter filter"
     "$bin" --headless --quiet --scene "$scene" --target-spp "$n" --seed 1 --out-float "$work/raw.pfm" \
       --out-denoised "$work/dn.pfm" --denoiser "$filter" --stats "$work/s.json" | head -1
     python3 "$here/denoise_error.py" "$refs/$scene-$ref_spp-seed101.pfm" \
-      "$refs/$scene-$ref_spp-seed102.pfm" "$work/raw.pfm" "$work/dn.pfm" "$work/s.json"
+      "$refs/$scene-$ref_spp-seed102.pfm" "$work/raw.pfm" "$work/dn.pfm" "$work/s.json" | tee "$work/e.txt"
+    # The denoised/raw column, one row of the summary.
+    table+=$'\n'"| $filter, $n |$(awk 'NR > 1 { printf " %.2f |", $5 }' "$work/e.txt")"
   done
 done
+echo "--- denoised/raw error, $scene against 2 x $ref_spp spp"
+echo "$table"

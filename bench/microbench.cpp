@@ -1,13 +1,16 @@
-// Google Benchmark micro-benchmark: single-ray closest hit on the cat with
-// each accelerator, on the diffuse (incoherent) ray set (ray_bench.h).
+// Google Benchmark micro-benchmarks: single-ray closest hit on the cat with
+// each accelerator, on the diffuse (incoherent) ray set (ray_bench.h), and
+// the denoiser on a 512 x 512 frame.
 #include <benchmark/benchmark.h>
 
 #include <random>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "geometry/bvh.h"
 #include "geometry/object_bvh.h"
+#include "render/denoise.h"
 #include "ray_bench.h"
 
 namespace {
@@ -78,6 +81,32 @@ void spheres_flat_list(benchmark::State& state) {
 
 BENCHMARK(spheres_object_bvh)->RangeMultiplier(10)->Range(10, 100000);
 BENCHMARK(spheres_flat_list)->RangeMultiplier(10)->Range(10, 100000);
+
+// The denoiser on a 512 x 512 frame (render/denoise.h) on 2 threads: two
+// noisy half images of a gradient with an albedo step, flat features.
+void denoise_512(benchmark::State& state, DenoiseFilter filter) {
+  constexpr int kSize = 512;
+  const std::size_t values = std::size_t(kSize) * kSize * 3;
+  std::vector<float> a(values), b(values), albedo(values), normal(values, 0.0f), depth(values / 3, 40.0f);
+  std::mt19937 rng(7);
+  std::normal_distribution<float> noise(0.0f, 0.3f);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const std::size_t k = (std::size_t(y) * kSize + std::size_t(x)) * 3 + std::size_t(c);
+        albedo[k] = x < kSize / 2 ? 0.8f : 0.3f;
+        const float truth = albedo[k] * (0.2f + float(y) / kSize);
+        a[k] = truth * (1.0f + noise(rng));
+        b[k] = truth * (1.0f + noise(rng));
+        if (c == 2) normal[k] = 1.0f;
+      }
+  const DenoiseInput in{kSize, kSize, a, b, albedo, albedo, normal, normal, depth, depth};
+  const DenoiseOptions options{filter, 2};
+  for (auto _ : state) benchmark::DoNotOptimize(denoise(in, options).rgb.data());
+}
+
+BENCHMARK_CAPTURE(denoise_512, fast, DenoiseFilter::Fast)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(denoise_512, quality, DenoiseFilter::Quality)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

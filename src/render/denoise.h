@@ -16,6 +16,11 @@
 //   Regression for Denoising Monte Carlo Renderings", EGSR 2016), each
 //   half guided by its own fast-filtered colour.
 //
+// After either, each filtered half's coarse band is replaced by that raw
+// half's (f + G(raw - f), G a 1 px Gaussian; denoise.cpp): the filters'
+// bias, which shows past their blur, leaves the coarse scales, which carry
+// the raw image's unbiased low frequencies instead.
+//
 // Both filter each half alone, its weights from its own colour and the
 // features, never from the other half; the output is the mean of the two
 // filtered halves. So each filtered half can be compared with the other,
@@ -59,7 +64,7 @@ struct DenoiseOptions {
 struct DenoiseResult {
   int width = 0, height = 0;
   std::vector<float> rgb;           // the denoised image: (rgb_a + rgb_b) / 2
-  std::vector<float> rgb_a, rgb_b;  // the two halves filtered
+  std::vector<float> rgb_a, rgb_b;  // the two halves filtered (coarse band restored)
   // Per pixel, the estimated mean squared error over the three channels of
   // `rgb` (bias included) and of the raw image (a + b) / 2 (its variance),
   // each from a 7 x 7 neighbourhood: a map to look at, noisy per pixel;

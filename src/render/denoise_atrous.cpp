@@ -193,7 +193,8 @@ inline __m256 abs8(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v)
 
 // One level at 8 pixels of row y from column x: each half's colour and
 // variance filtered with weights from its own colour (and both
-// halves' features).
+// halves' features); with kBoth false half a alone (half b the same).
+template <bool kBoth>
 void atrous_pixels(const Level& L, int y, int x) {
   const Pixel8 p = load_pixel(L, y, x);
   const AtrousParams& k = L.params;
@@ -210,14 +211,17 @@ void atrous_pixels(const Level& L, int y, int x) {
         const __m256 n = p.n[c] - load8(L.f.at(kNx + c, qy, qx));
         const __m256 a = p.a[c] - load8(L.f.at(kAr + c, qy, qx));
         xa[c] = load8(L.in.at(kXa + c, qy, qx));
-        xb[c] = load8(L.in.at(kXb + c, qy, qx));
-        const __m256 ea = p.xa[c] - xa[c], eb = p.xb[c] - xb[c];
+        const __m256 ea = p.xa[c] - xa[c];
         dn += n * n;
         da += a * a;
         dca += ea * ea;
-        dcb += eb * eb;
+        if constexpr (kBoth) {
+          xb[c] = load8(L.in.at(kXb + c, qy, qx));
+          const __m256 eb = p.xb[c] - xb[c];
+          dcb += eb * eb;
+        }
       }
-      const __m256 va = load8(L.in.at(kVa, qy, qx)), vb = load8(L.in.at(kVb, qy, qx));
+      const __m256 va = load8(L.in.at(kVa, qy, qx));
       const __m256 tol = k.depth * (p.gx * float(std::abs(kx * L.step)) + p.gy * float(std::abs(ky * L.step))) +
                          1e-3f * p.z + 1e-6f;
       const __m256 dz = abs8(p.z - load8(L.f.at(kDepth, qy, qx))) / tol;
@@ -225,51 +229,70 @@ void atrous_pixels(const Level& L, int y, int x) {
       const __m256 h = kB3[ky + 2] * kB3[kx + 2] * load8(L.f.at(kInside, qy, qx));
       // Each half weighted by its own colour (so that neither depends on the
       // other's values: the error estimate compares each with the other).
-      const __m256 ca = dca / (c2 * (p.va + va) + kEps), cb = dcb / (c2 * (p.vb + vb) + kEps);
+      const __m256 ca = dca / (c2 * (p.va + va) + kEps);
       const __m256 wa = h * exp_negative(-(feature + ca));
-      const __m256 wb = h * exp_negative(-(feature + cb));
-      for (int c = 0; c < 3; ++c) {
-        sa[c] += wa * xa[c];
-        sb[c] += wb * xb[c];
-      }
+      for (int c = 0; c < 3; ++c) sa[c] += wa * xa[c];
       swa += wa;
-      swb += wb;
       wva += wa * wa * va;
-      wvb += wb * wb * vb;
+      if constexpr (kBoth) {
+        const __m256 vb = load8(L.in.at(kVb, qy, qx));
+        const __m256 cb = dcb / (c2 * (p.vb + vb) + kEps);
+        const __m256 wb = h * exp_negative(-(feature + cb));
+        for (int c = 0; c < 3; ++c) sb[c] += wb * xb[c];
+        swb += wb;
+        wvb += wb * wb * vb;
+      }
     }
   const __m256 tiny = _mm256_set1_ps(1e-30f);
   swa = _mm256_max_ps(swa, tiny);
-  swb = _mm256_max_ps(swb, tiny);
-  for (int c = 0; c < 3; ++c) {
-    store8(L.out.at(kXa + c, y, x), sa[c] / swa);
-    store8(L.out.at(kXb + c, y, x), sb[c] / swb);
-  }
+  for (int c = 0; c < 3; ++c) store8(L.out.at(kXa + c, y, x), sa[c] / swa);
   // SVGF eq. 6: the variance of a weighted mean of independent values.
   store8(L.out.at(kVa, y, x), wva / (swa * swa));
-  store8(L.out.at(kVb, y, x), wvb / (swb * swb));
+  if constexpr (kBoth) {
+    swb = _mm256_max_ps(swb, tiny);
+    for (int c = 0; c < 3; ++c) store8(L.out.at(kXb + c, y, x), sb[c] / swb);
+    store8(L.out.at(kVb, y, x), wvb / (swb * swb));
+  }
 }
 
 }  // namespace
 
-void atrous(Planes& streams, const Planes& features, const AtrousParams& params, int threads) {
+void atrous(Planes& streams, const Planes& features, const AtrousParams& params, int threads, bool same_halves) {
   const int w = streams.w, h = streams.h;
   Planes next(w, h, kStreamPlanes);
   for (int level = 0; level < params.levels; ++level) {
     const Level L{features, streams, next, 1 << level, params};
     parallel_rows(h, threads, [&](int y0, int y1) {
       for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += 8) atrous_pixels(L, y, x);
+        for (int x = 0; x < w; x += 8) {
+          if (same_halves)
+            atrous_pixels<false>(L, y, x);
+          else
+            atrous_pixels<true>(L, y, x);
+        }
     });
     // Columns past the width (the last 8 pixels' padding) stay zero.
     for (int k = 0; k < kStreamPlanes; ++k)
       for (int y = 0; y < h; ++y) std::fill(next.at(k, y, w), next.at(k, y, 0) + (w + 7) / 8 * 8, 0.0f);
     std::swap(streams, next);
   }
+  if (same_halves) copy_half_a_to_b(streams);
+}
+
+bool same_halves(const DenoiseInput& in) {
+  return in.colour_a.data() == in.colour_b.data() && in.albedo_a.data() == in.albedo_b.data() &&
+         in.normal_a.data() == in.normal_b.data() && in.depth_a.data() == in.depth_b.data();
+}
+
+void copy_half_a_to_b(Planes& streams) {
+  for (int c = 0; c < 3; ++c)
+    for (int y = 0; y < streams.h; ++y) std::copy_n(streams.at(kXa + c, y, 0), streams.w, streams.at(kXb + c, y, 0));
+  for (int y = 0; y < streams.h; ++y) std::copy_n(streams.at(kVa, y, 0), streams.w, streams.at(kVb, y, 0));
 }
 
 void atrous_filter(const DenoiseInput& in, int threads, std::vector<float>& a, std::vector<float>& b) {
   Prepared p = prepare(in, threads);
-  atrous(p.streams, p.features, AtrousParams{}, threads);
+  atrous(p.streams, p.features, AtrousParams{}, threads, same_halves(in));
   modulate(p, p.streams, a, b);
 }
 

@@ -93,8 +93,15 @@ struct AtrousParams {
 };
 
 
-// Filters the streams of prepare() in place.
-void atrous(Planes& streams, const Planes& features, const AtrousParams& params, int threads);
+// Filters the streams of prepare() in place. With `same_halves` (both
+// halves one image: denoise() filters each half alone) half a alone is
+// filtered and copied to b, half the colour work.
+void atrous(Planes& streams, const Planes& features, const AtrousParams& params, int threads,
+            bool same_halves = false);
+// Whether `in`'s two halves are the same buffers.
+bool same_halves(const DenoiseInput& in);
+// The streams' half a (colour and variance) copied over half b.
+void copy_half_a_to_b(Planes& streams);
 
 void atrous_filter(const DenoiseInput& in, int threads, std::vector<float>& a, std::vector<float>& b);
 void regression_filter(const DenoiseInput& in, int threads, std::vector<float>& a, std::vector<float>& b);

@@ -147,16 +147,19 @@ void regression_filter(const DenoiseInput& in, int threads, std::vector<float>& 
   // Each half's guide: that half filtered by the fast filter (its own colour
   // weights), so that neither half's result depends on the other's values.
   Planes guide = p.streams;
-  atrous(guide, p.features, AtrousParams{}, threads);
+  const bool same = same_halves(in);
+  atrous(guide, p.features, AtrousParams{}, threads, same);
   const RegressionParams rp;
   Planes out(in.width, in.height, kStreamPlanes);
-  for (int half = 0; half < 2; ++half) {
+  // Both halves one image (denoise() filters each alone): half a, copied.
+  for (int half = 0; half < (same ? 1 : 2); ++half) {
     const Job job{p.features, guide, p.streams, out, half, rp};
     parallel_rows(in.height, threads, [&](int y0, int y1) {
       for (int y = y0; y < y1; ++y)
         for (int x = 0; x < in.width; x += 8) regress_pixels(job, y, x);
     });
   }
+  if (same) copy_half_a_to_b(out);
   modulate(p, out, a, b);
 }
 
