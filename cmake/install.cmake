@@ -13,14 +13,19 @@ foreach(_dir "" tests bench)
 endforeach()
 file(CREATE_LINK ${PROJECT_SOURCE_DIR}/shaders ${PROJECT_BINARY_DIR}/shaders SYMBOLIC)
 
-# The man page, compressed as Debian installs man pages (-n: no time stamp,
-# so the package is the same for the same sources).
-set(WHISKER_MAN_GZ ${PROJECT_BINARY_DIR}/packaging/whisker.1.gz)
-add_custom_command(OUTPUT ${WHISKER_MAN_GZ}
+# The man page: packaging/whisker.1 with the render settings written in from
+# the settings table by the built binary, then compressed as Debian installs
+# man pages (-n: no time stamp, so the package is the same for the same
+# sources).
+set(WHISKER_MAN ${PROJECT_BINARY_DIR}/packaging/whisker.1)
+set(WHISKER_MAN_GZ ${WHISKER_MAN}.gz)
+add_custom_command(OUTPUT ${WHISKER_MAN} ${WHISKER_MAN_GZ}
   COMMAND ${CMAKE_COMMAND} -E make_directory ${PROJECT_BINARY_DIR}/packaging
-  COMMAND gzip -9nc ${PROJECT_SOURCE_DIR}/packaging/whisker.1 > ${WHISKER_MAN_GZ}
-  DEPENDS ${PROJECT_SOURCE_DIR}/packaging/whisker.1
-  COMMENT "Compressing the man page")
+  COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/update_man.sh $<TARGET_FILE:whisker>
+          ${PROJECT_SOURCE_DIR}/packaging/whisker.1 ${WHISKER_MAN}
+  COMMAND gzip -9nc ${WHISKER_MAN} > ${WHISKER_MAN_GZ}
+  DEPENDS whisker ${PROJECT_SOURCE_DIR}/packaging/whisker.1 ${PROJECT_SOURCE_DIR}/scripts/update_man.sh
+  COMMENT "The man page, its settings from the table")
 add_custom_target(whisker_man ALL DEPENDS ${WHISKER_MAN_GZ})
 
 set(_data ${CMAKE_INSTALL_DATADIR}/whisker)

@@ -1,14 +1,13 @@
 #!/bin/bash
-# Rewrites the render settings' options in packaging/whisker.1 (between the
-# BEGIN SETTINGS and END SETTINGS comments) from the settings table, as the
-# built binary prints it:
-#   scripts/update_man.sh build/whisker
-# CliSettings.ManPageListsEveryRow fails until the page matches the table.
+# The man page as installed: the page in packaging/whisker.1 with the render
+# settings' options (between its BEGIN SETTINGS and END SETTINGS comments)
+# written in from the settings table, as the built binary prints it. Run by
+# the build (cmake/install.cmake):
+#   scripts/update_man.sh BINARY PAGE OUT
 set -euo pipefail
-bin=$1
-page=$(dirname "$0")/../packaging/whisker.1
+bin=$1 page=$2 out=$3
 generated=$(mktemp)
-trap 'rm -f "$generated" "$page.new"' EXIT
+trap 'rm -f "$generated" "$out.new"' EXIT
 "$bin" --man-settings >"$generated"
 awk -v generated="$generated" '
   /^\.\\" END SETTINGS/ { inside = 0 }
@@ -17,5 +16,5 @@ awk -v generated="$generated" '
     while ((getline line < generated) > 0) print line
     inside = 1
   }
-' "$page" >"$page.new"
-mv "$page.new" "$page"
+' "$page" >"$out.new"
+mv "$out.new" "$out"

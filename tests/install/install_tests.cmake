@@ -14,7 +14,7 @@ add_test(NAME Install.DebianPackageFilesDependsVersion
 add_test(NAME Install.DesktopEntryValidates
   COMMAND bash ${_dir}/desktop_test.sh ${_root})
 add_test(NAME Install.ManPageNamesEveryHelpOption
-  COMMAND bash ${_dir}/man_test.sh $<TARGET_FILE:whisker> ${_root})
+  COMMAND bash ${_dir}/man_test.sh $<TARGET_FILE:whisker> ${PROJECT_BINARY_DIR}/packaging/whisker.1)
 set_tests_properties(Install.InstalledTreeRunsWithoutTheSourceTree
   Install.SceneNameLookupOrderAndFileArgument Install.DebianPackageFilesDependsVersion
   Install.DesktopEntryValidates Install.ManPageNamesEveryHelpOption

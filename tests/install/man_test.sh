@@ -1,11 +1,10 @@
 #!/bin/bash
 # The man page renders without warnings and names every option that
 # `whisker --help` and `whisker merge --help` list, and every exit code.
-#   man_test.sh WHISKER_BIN SOURCE_DIR
+#   man_test.sh WHISKER_BIN PAGE (the page as built: the settings written in)
 set -uo pipefail
-bin=$1 src=$2
+bin=$1 page=$2
 fail() { echo "FAIL: $*" >&2; exit 1; }
-page=$src/packaging/whisker.1
 warnings=$(LC_ALL=C.UTF-8 MANWIDTH=80 man --warnings -l "$page" 2>&1 >/dev/null)
 [ -z "$warnings" ] || fail "man warns: $warnings"
 # The page's source with roff's \- as -, for plain searching.
