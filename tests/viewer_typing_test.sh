@@ -7,7 +7,10 @@
 #   D. `--frames 2` without --screenshot keeps the window open once the two
 #      passes are done; typing 15 into "target spp" applies once, on Enter
 #      (not 1 and then 15), and raising the target carries the accumulation
-#      on in the same generation up to 15 samples per pixel.
+#      on in the same generation up to 15 samples per pixel;
+#   R. typed past their ranges (Ctrl+click on a slider), max depth -5 and
+#      samples/pass 0 are kept at the command line's bounds, 0 and 1, and
+#      the panel says what was typed and kept.
 # Exit 77 (ctest: skipped) without Xvfb or xdotool.
 #   viewer_typing_test.sh path/to/whisker
 set -u
@@ -23,6 +26,10 @@ D() { sleep 2; echo "alive after 2 passes" >"$dir/D.alive"; click $TARGET_X $TAR
 U() { xdotool mousemove --window "$wid" 256 400; sleep 0.2; xdotool mousedown 1; sleep 0.2
       for k in 1 2 3 4 5 6; do xdotool mousemove --window "$wid" $((256 + 10 * k)) 400; sleep 0.1; done
       xdotool mouseup 1; sleep 0.5; combo z; press c; combo y; press c; }
+ctrl_click() { xdotool keydown ctrl; sleep 0.2; click "$1" "$2"; xdotool keyup ctrl; sleep 0.3; }
+R() { ctrl_click $DEPTH_X $DEPTH_Y; combo a; typed -5; press Return; sleep 1
+      ctrl_click $SPP_X $SPP_Y; combo a; typed 0; press Return; sleep 1; }
+session R "--edit-log $dir/R.log" R
 session C "" C
 session D "--frames 2" D
 session U "" U
@@ -32,6 +39,7 @@ INNER
 cat >"$dir/layout.sh" <<'INNER'
 PATH_X=640 PATH_Y=405
 TARGET_X=620 TARGET_Y=681
+DEPTH_X=640 DEPTH_Y=589 SPP_X=640 SPP_Y=612
 INNER
 
 in_xvfb
@@ -44,6 +52,10 @@ check "C: typing restarted nothing (generation 1)" '[ "$(field C 1)" = 1 ]'
 check "D: the window stayed open after --frames 2" '[ -f "$dir/D.alive" ] && grep -q "^exit 0$" "$dir/D.err"'
 check "D: typing 15 and Enter raised the target without a restart (generation 1)" '[ "$(field D 1)" = 1 ]'
 check "D: the accumulation went on to 15 spp" '[ "$(field D 2)" = 15 ]'
+echo "--- R"; grep "^message" "$dir/R.log"
+check "R: max depth -5 kept at 0, and said so" 'grep -q "text=max depth: must be in \[0, 1000\], got -5; kept 0$" "$dir/R.log"'
+check "R: samples/pass 0 kept at 1, and said so" 'grep -q "text=samples/pass: must be in \[1, 65536\], got 0; kept 1$" "$dir/R.log"'
+check "R: the viewer quit with exit 0" 'grep -q "^exit 0$" "$dir/R.err"'
 eye_x() { eye "$1" "$2" | cut -d' ' -f1; }  # the camera printed by the n-th C press
 echo "--- U"; cat "$dir/U.err"; grep -A2 position "$dir/U.out"
 check "U: the viewer quit on Esc with exit 0" 'grep -q "^exit 0$" "$dir/U.err"'

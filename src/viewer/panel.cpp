@@ -40,13 +40,14 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
     changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
   if (m.kind == MaterialKind::Diffuse) tip("Fraction of light reflected, per colour channel.");
   if (is_glass(m.kind))
-    changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f");
+    changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f",
+                                ImGuiSliderFlags_AlwaysClamp);
   if (is_glass(m.kind))
     tip("How strongly the glass bends light: 1.0 air, 1.33 water, 1.5 window glass. "
         "Drag, or double-click to type.");
   if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
     changed |= ImGui::DragFloat("bubble radius", inner_radius, 0.02f, 0.0f,
-                                *radius, "%.2f");
+                                *radius, "%.2f", ImGuiSliderFlags_AlwaysClamp);
   if (inner_radius && radius && m.kind == MaterialKind::HollowGlass)
     tip("Radius of the air bubble inside the sphere; the shell is the difference.");
   return changed;
@@ -66,10 +67,11 @@ static void setting_checkboxes(RenderSettings& r) {
 
 static void display_section(ViewerState& s) {
   if (!ImGui::CollapsingHeader("Display")) return;
-  ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f");
+  ImGui::SliderFloat("exposure (stops)", &s.exposure_stops, -12.0f, 12.0f, "%+.1f",
+                     ImGuiSliderFlags_AlwaysClamp);
   tip("Brightness of the display in photographic stops: +1 doubles, -1 halves. "
       "0 is the report's mapping. Never restarts the render; Save uses it too.");
-  ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f");
+  ImGui::SliderFloat("gamma", &s.display.gamma, 1.0f, 3.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
   tip("Display gamma; the report uses 2.2.");
   static const char* curves[] = {"report (clip at white)", "ACES filmic"};
   ImGui::Combo("tone curve", &s.display.tonemap, curves, 2);
@@ -112,28 +114,54 @@ static void scene_section(ViewerState& s, PanelRequests& req) {
 }
 
 // Three doubles (scene positions are double, scene.h), dragged or typed.
+// A value typed past its range (Ctrl+click on a slider, a number box) is
+// brought back into it, the command line's range for a setting, and the
+// panel says what was typed and what was kept, as the command line refuses
+// such a value.
+template <class T>
+static void keep_in_range(ViewerState& s, const char* label, T& v, double lo, double hi) {
+  if (double(v) >= lo && double(v) <= hi) return;
+  const T typed = v;
+  v = double(v) < lo ? T(lo) : T(hi);
+  char text[160];
+  std::snprintf(text, sizeof text, "%s: must be in [%.6g, %.6g], got %.6g; kept %.6g", label, lo, hi,
+                double(typed), double(v));
+  s.message = text;
+  s.message_is_error = true;
+}
+template <class T>
+static void keep_in_range(ViewerState& s, const char* label, T& v, const char* key) {
+  const SettingField& f = setting_field(key);
+  keep_in_range(s, label, v, f.lo, f.option_hi > 0.0 ? f.option_hi : f.hi);
+}
+
 static void drag_position(const char* label, double* xyz) {
   ImGui::DragScalarN(label, ImGuiDataType_Double, xyz, 3, 0.25f, nullptr, nullptr, "%.2f");
 }
 
-static void light_section(PointLight& light) {
+static void light_section(ViewerState& s) {
+  PointLight& light = s.edited.light;
   if (!ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return;
   drag_position("position", &light.position.x);
   tip("Where the point light is (x, y, z in scene units). Drag a number sideways, "
       "or double-click it to type; a typed value applies on Enter.");
   ImGui::DragFloat("intensity", &light.intensity, light.intensity * 0.005f + 1.0f,
                    0.0f, 1e14f, "%.3g", ImGuiSliderFlags_Logarithmic);
+  keep_in_range(s, "intensity", light.intensity, 0.0, 1e30);  // as --intensity
   tip("The light's power. Light falls off with the square of the distance, so "
       "scenes use large values (the cat: 2e10).");
 }
 
 // The render settings' own widgets, one per setting, in one row of
 // checkboxes and then sliders.
-static void settings_widgets(RenderSettings& r) {
+static void settings_widgets(ViewerState& s) {
+  RenderSettings& r = s.edited.settings;
   setting_checkboxes(r);
   ImGui::SliderInt("max depth", &r.max_depth, 0, 16);
+  keep_in_range(s, "max depth", r.max_depth, "max_depth");
   tip("Most bounces a path may take (mirror, glass and, with indirect, diffuse).");
   ImGui::SliderInt("samples/pass", &r.spp, 1, 64);
+  keep_in_range(s, "samples/pass", r.spp, "spp");
   tip("Samples per pixel each pass adds. More per pass: fewer, slower image updates.");
 }
 
@@ -226,10 +254,11 @@ static void glass_toggle(ViewerState& s) {
 static void sampling_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Sampling", ImGuiTreeNodeFlags_DefaultOpen)) return;
   RenderSettings& r = s.edited.settings;
-  settings_widgets(r);
+  settings_widgets(s);
   glass_toggle(s);
   split_widgets(r);
-  if (ImGui::InputInt("target spp", &r.target_spp, 32, 256)) r.target_spp = std::max(0, r.target_spp);
+  ImGui::InputInt("target spp", &r.target_spp, 32, 256);
+  keep_in_range(s, "target spp", r.target_spp, "target_spp");
   tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
       "Enter; raising it, or +, carries on from the current image.");
   threads_slider(s, req);
@@ -254,7 +283,7 @@ static void camera_section(ViewerState& s, PanelRequests& req) {
   tip("Camera position (x, y, z). Or left-drag on the image to orbit.");
   drag_position("look at", &camera.look_at.x);
   tip("The point the camera looks at and orbits around.");
-  ImGui::SliderFloat("fov (deg)", &camera.fov_deg, 5.0f, 150.0f, "%.1f");
+  ImGui::SliderFloat("fov (deg)", &camera.fov_deg, 5.0f, 150.0f, "%.1f", ImGuiSliderFlags_AlwaysClamp);
   tip("Field of view in degrees: smaller zooms in.");
   if (ImGui::Button("Reset camera")) req.reset_camera = true;
   tip("Back to the camera of the scene as loaded.");
@@ -318,7 +347,7 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
   compare_section(s, req);
   save_section(s, req);
   scene_section(s, req);
-  light_section(s.edited.light);
+  light_section(s);
   sampling_section(s, req);
   camera_section(s, req);
   objects_section(s.edited);
