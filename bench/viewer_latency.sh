@@ -8,7 +8,7 @@
 # as the panel), the viewer's event log (--edit-log) gives, from the frame
 # that made the edit:
 #   first image: the first frame drawn after its swap that shows the new
-#                settings (a quick pass, ProgressiveRenderer::set_preview);
+#                settings (a quick pass, ProgressiveRenderer::set_quick_passes);
 #   first pass:  the first frame with a full pass of the new settings;
 #   5 % noise:   the first frame whose own passes' noise figure is <= 5 %.
 # Then a mouse drag through xdotool (60 moves a second for 3 s on the

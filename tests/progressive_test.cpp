@@ -123,15 +123,15 @@ TEST(Progressive, ReachingTheTargetStops) {
 }
 
 TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
-  // The viewer's quick passes (set_preview): an edit's first images are
+  // The viewer's quick passes (set_quick_passes): an edit's first images are
   // whole passes of one path per sample, published apart from the
   // generation's own, pixel for pixel what a render with the quick settings
   // gives.
   Scene scene = sized("indirect", 96, 80, 1, 2);
   scene.settings.split = {4, 4};
-  ASSERT_TRUE(cheap_differs(scene.settings));
+  ASSERT_TRUE(quick_differs(scene.settings));
   ProgressiveRenderer r(1);
-  r.set_preview(true);
+  r.set_quick_passes(true);
   const auto gen = r.set_scene(scene);
   r.start();
   Snapshot quick;
@@ -146,7 +146,7 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
   r.snapshot(own);
   r.stop();
   Scene cheap = scene;
-  cheap.settings = cheap_settings(scene.settings);
+  cheap.settings = quick_settings(scene.settings);
   cheap.settings.target_spp = int(quick.spp);
   EXPECT_EQ(quick.sum, render(cheap, 1).sum);
   // No 4x4 blocks: most horizontal neighbours differ (each pixel its own path).
@@ -156,7 +156,7 @@ TEST(Progressive, QuickPassesComeFirstAtFullResolution) {
       differ += quick.mean(x, y, 0) + quick.mean(x, y, 1) + quick.mean(x, y, 2) !=
                 quick.mean(x + 1, y, 0) + quick.mean(x + 1, y, 1) + quick.mean(x + 1, y, 2);
   EXPECT_GT(differ, pairs / 2);
-  EXPECT_FALSE(own.preview);
+  EXPECT_FALSE(own.quick);
   EXPECT_EQ(own.spp, 2u);
   EXPECT_EQ(own.counters.passes, 2u);
   EXPECT_EQ(own.sum, render(scene, 1).sum);  // the quick passes never mix in
@@ -170,7 +170,7 @@ TEST(Progressive, QuickPassesWhileDraggingAreCoarseThenFullSize) {
   Scene scene = sized("indirect", 96, 80, 1, 2);
   scene.settings.split = {4, 4};
   ProgressiveRenderer r(1);
-  r.set_preview(true);
+  r.set_quick_passes(true);
   r.set_dragging(true);  // before the first pass: no full-size pass timed yet
   const auto gen = r.set_scene(scene);
   r.start();
@@ -182,7 +182,7 @@ TEST(Progressive, QuickPassesWhileDraggingAreCoarseThenFullSize) {
   EXPECT_EQ(quick.height, 40);
   ASSERT_GE(quick.spp, 1u);
   Scene coarse = scene;
-  coarse.settings = cheap_settings(scene.settings);
+  coarse.settings = quick_settings(scene.settings);
   coarse.settings.target_spp = int(quick.spp);
   coarse.camera.width = 48;
   coarse.camera.height = 40;
@@ -233,7 +233,7 @@ TEST(Progressive, QuickPassesAreNeverAccumulated) {
   Scene after = small_scene(2, 4);
   after.light.position = vec3(5.0f, 20.0f, 30.0f);
   ProgressiveRenderer r(2);
-  r.set_preview(true);
+  r.set_quick_passes(true);
   const auto g1 = r.set_scene(before);
   r.start();
   ASSERT_TRUE(r.wait_for(g1, 2));
@@ -242,7 +242,7 @@ TEST(Progressive, QuickPassesAreNeverAccumulated) {
   Snapshot s;
   r.snapshot(s);
   r.stop();
-  EXPECT_FALSE(s.preview);
+  EXPECT_FALSE(s.quick);
   EXPECT_EQ(s.sum, render(after, 1).sum);
 }
 

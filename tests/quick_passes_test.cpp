@@ -20,21 +20,21 @@ TEST(QuickPasses, DragStrideBringsAPassUnderItsAim) {
   EXPECT_EQ(QuickPasses::drag_stride(0.2, 511, 512), 1);    // nothing divides 511 and 512
 }
 
-// The quick passes' settings (cheap_settings) differ from the settings' own
+// The quick passes' settings (quick_settings) differ from the settings' own
 // only with more than one sample per pass or with indirect paths split.
 TEST(QuickPasses, QuickPassesOnlyWhenTheyAreCheaper) {
   RenderSettings s;
   s.indirect = false;
   s.spp = 1;
   s.split = {4, 4};
-  EXPECT_FALSE(cheap_differs(s));  // splitting needs indirect light
+  EXPECT_FALSE(quick_differs(s));  // splitting needs indirect light
   s.spp = 4;
-  EXPECT_TRUE(cheap_differs(s));
+  EXPECT_TRUE(quick_differs(s));
   s.spp = 1;
   s.indirect = true;
-  EXPECT_TRUE(cheap_differs(s));
+  EXPECT_TRUE(quick_differs(s));
   s.split = {1};
-  EXPECT_FALSE(cheap_differs(s));
+  EXPECT_FALSE(quick_differs(s));
 }
 
 // The quick passes' settings: one path per sample (no splitting, unit
@@ -50,7 +50,7 @@ TEST(QuickPasses, CheapSettingsAreOnePathPerSampleWithASeedOfTheirOwn) {
   s.indirect = s.aa = s.fresnel = true;
   s.max_depth = 3;
   s.seed = 42;
-  const RenderSettings q = cheap_settings(s);
+  const RenderSettings q = quick_settings(s);
   EXPECT_EQ(q.spp, 1);
   EXPECT_EQ(q.split, std::vector<int>({1}));
   EXPECT_EQ(q.split_weights, vec3(1.0f));
@@ -59,5 +59,5 @@ TEST(QuickPasses, CheapSettingsAreOnePathPerSampleWithASeedOfTheirOwn) {
   EXPECT_NE(q.seed, s.seed);
   EXPECT_TRUE(q.indirect && q.aa && q.fresnel);
   EXPECT_EQ(q.max_depth, 3);
-  EXPECT_FALSE(cheap_differs(q));  // already the cheapest
+  EXPECT_FALSE(quick_differs(q));  // already the cheapest
 }

@@ -224,7 +224,7 @@ void wait_for_target(const ProgressiveRenderer& renderer, std::uint64_t gen,
   Snapshot s;
   while (!interrupt_signal() && renderer.failure().empty()) {
     renderer.snapshot(s);  // copies only when a new pass was published
-    if (s.generation == gen && !s.preview && (s.spp >= target || s.done)) return;
+    if (s.generation == gen && !s.quick && (s.spp >= target || s.done)) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
 }
@@ -234,7 +234,7 @@ void wait_for_target(const ProgressiveRenderer& renderer, std::uint64_t gen,
 int finish_interrupted(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap,
                        std::uint64_t gen, int threads) {
   const int sig = interrupt_signal();
-  if (snap.generation != gen || snap.preview || snap.spp == 0) {
+  if (snap.generation != gen || snap.quick || snap.spp == 0) {
     std::fprintf(stderr, "whisker: interrupted before the first pass ended; nothing written\n");
     return interrupted_exit_code(sig);
   }

@@ -173,7 +173,7 @@ void Checkpointer::run() {
   std::string warned;  // the last failure told, said once (not 19 lines a second on a full disk)
   std::unique_lock lock(mutex_);
   while (!cv_.wait_for(lock, period, [this] { return stopping_; })) {
-    if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.preview ||
+    if (!renderer_.snapshot(snap) || snap.generation != generation_ || snap.quick ||
         snap.done || snap.spp <= written)
       continue;
     try {

@@ -31,15 +31,15 @@ void write_stats_json(const std::string& path, const RenderStats& st) {
       {"rays_per_s", secs > 0 ? double(snap.counters.rays) / secs : 0.0},
       {"nan_count", snap.counters.nan_count},
       {"threads", st.threads},
-      // A preview has no noise estimate; nlohmann writes NaN and Inf as null.
+      // A quick pass has no noise estimate; nlohmann writes NaN and Inf as null.
       // The figure is the worst of the scales below (Snapshot).
-      {"relative_standard_error", snap.preview ? NAN : snap.relative_standard_error()},
+      {"relative_standard_error", snap.quick ? NAN : snap.relative_standard_error()},
   };
   // Per scale k (box filter side): the pixel figure at 1, the half images'
   // figure times k beyond; equal for independent pixels.
-  nlohmann::json by_scale = {{"1", snap.preview ? NAN : snap.pixel_standard_error()}};
+  nlohmann::json by_scale = {{"1", snap.quick ? NAN : snap.pixel_standard_error()}};
   for (int k : kNoiseScales)
-    by_scale[std::to_string(k)] = snap.preview ? NAN : snap.scale_standard_error(k);
+    by_scale[std::to_string(k)] = snap.quick ? NAN : snap.scale_standard_error(k);
   j["relative_standard_error_by_scale"] = by_scale;
   if (st.settings) j["settings"] = settings_to_json(*st.settings);
   for (const auto& [key, value] : st.extra)

@@ -75,9 +75,9 @@ struct Snapshot {
   std::uint64_t version = 0;  // bumps with every published pass
   RenderCounters counters;    // this generation's
   bool done = false;            // reached the target samples per pixel
-  // A quick pass's image (ProgressiveRenderer::set_preview: one path per
+  // A quick pass's image (ProgressiveRenderer::set_quick_passes: one path per
   // sample, shown in the first moments after an edit), never a render's.
-  bool preview = false;
+  bool quick = false;
   // A quick pass rendered while dragging (ProgressiveRenderer::set_dragging):
   // each of its pixels covers stride x stride pixels of the image.
   int stride = 1;

@@ -43,8 +43,8 @@ struct ProgressiveRenderer::Job {
   int width = 0, height = 0;
   Film film;
   bool film_stale = false;  // film holds an older generation's sums
-  bool preview_pass = false;
-  QuickPasses quick;  // set_preview
+  bool quick_pass = false;
+  QuickPasses quick;  // set_quick_passes
   bool exact = false;  // deterministic_estimate(scene)
   std::uint64_t spp_done = 0;
   RenderCounters counters;
@@ -105,7 +105,7 @@ void ProgressiveRenderer::set_target_spp(int target_spp) {
   }
   // The published image is no longer "done" if the target went up.
   std::lock_guard lock(publish_mutex_);
-  if (published_.generation == gen && !published_.preview && !(stop_when_exact_ && job_exact_published_))
+  if (published_.generation == gen && !published_.quick && !(stop_when_exact_ && job_exact_published_))
     published_.done = target > 0 && published_.spp >= std::uint64_t(target);
 }
 
@@ -211,10 +211,10 @@ bool ProgressiveRenderer::wait_for(std::uint64_t gen, std::uint64_t spp) {
   publish_cv_.wait(lock, [&] {
     if (!running_) return true;
     return published_.generation > gen ||
-           (published_.generation == gen && !published_.preview &&
+           (published_.generation == gen && !published_.quick &&
             (published_.spp >= spp || published_.done));
   });
-  return published_.generation == gen && !published_.preview &&
+  return published_.generation == gen && !published_.quick &&
          (published_.spp >= spp || published_.done);
 }
 
@@ -306,12 +306,12 @@ void ProgressiveRenderer::adopt_generation(const RenderStart& start) {
   job.height = job.scene.camera.height;
   job.spp_done = 0;
   job.counters = {};
-  job.preview_pass = false;
+  job.quick_pass = false;
   job.exact = deterministic_estimate(job.scene);
   // The film is cleared when the generation's own first pass begins: a
   // drag adopts a generation per quick pass and may never reach one.
   job.film_stale = true;
-  job.quick.begin_generation(job.scene, preview_enabled_ && !start.resume);
+  job.quick.begin_generation(job.scene, quick_enabled_ && !start.resume);
   job.first_sample = start.first_sample;
   if (!start.resume) return;
   // The resumed part's sums, counters and samples, as if its passes had
@@ -327,28 +327,28 @@ void ProgressiveRenderer::adopt_generation(const RenderStart& start) {
 void ProgressiveRenderer::plan_pass() {
   Job& job = *job_;
   // Quick passes first, then the generation's own.
-  job.preview_pass = job.quick.next_is_quick(job.spp_done);
-  if (job.preview_pass) job.quick.set_up(dragging_);
-  if (!job.preview_pass && job.film_stale) {
+  job.quick_pass = job.quick.next_is_quick(job.spp_done);
+  if (job.quick_pass) job.quick.set_up(dragging_);
+  if (!job.quick_pass && job.film_stale) {
     job.film.reset(job.width, job.height, features_);
     job.film_stale = false;
   }
-  job.pass_cam = job.preview_pass ? &job.quick.camera(*job.cam) : job.cam.get();
+  job.pass_cam = job.quick_pass ? &job.quick.camera(*job.cam) : job.cam.get();
   job.pass_tiles_x = (job.pass_cam->width + kTile - 1) / kTile;
   job.pass_tiles_y = (job.pass_cam->height + kTile - 1) / kTile;
   const RenderSettings& s = job.scene.settings;
-  int spp = job.preview_pass ? 1 : std::max(1, s.spp);
-  if (s.target_spp > 0 && !job.preview_pass)
+  int spp = job.quick_pass ? 1 : std::max(1, s.spp);
+  if (s.target_spp > 0 && !job.quick_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   // At most kCachedSamples light caches at a time: bounded whatever --spp.
-  const bool cached = !job.preview_pass && s.connect && s.indirect;
+  const bool cached = !job.quick_pass && s.connect && s.indirect;
   job.chunk_spp = cached ? std::min(spp, kCachedSamples) : spp;
   job.chunks = (spp + job.chunk_spp - 1) / job.chunk_spp;
   job.light_caches.resize(cached ? std::size_t(job.chunk_spp) : 0);
   if (job.chunks > 1) job.carry.resize(std::size_t(job.pass_cam->width) * std::size_t(job.pass_cam->height));
   job.next_cache = 0;
   job.pass_spp = spp;
-  job.sample_base = job.preview_pass ? job.quick.next_sample() : job.first_sample + job.spp_done;
+  job.sample_base = job.quick_pass ? job.quick.next_sample() : job.first_sample + job.spp_done;
   job.next_tile = 0;
   job.pass_nans = 0;
   job.pass_rays = 0;
@@ -357,7 +357,7 @@ void ProgressiveRenderer::plan_pass() {
   progress_generation_ = job.generation;
   progress_tiles_done_ = 0;
   progress_tiles_total_ = job.pass_tiles_x * job.pass_tiles_y * job.chunks;
-  progress_spp_ = job.preview_pass ? 0 : spp;
+  progress_spp_ = job.quick_pass ? 0 : spp;
   progress_start_ns_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
                            job.pass_start.time_since_epoch()).count();
   progress_running_ = true;
@@ -365,7 +365,7 @@ void ProgressiveRenderer::plan_pass() {
 
 const std::atomic<bool>& ProgressiveRenderer::cancel_flag() const {
   // A quick pass runs to its end (a drag shows each one), but a stop ends it.
-  return job_->preview_pass ? quit_ : cancel_;
+  return job_->quick_pass ? quit_ : cancel_;
 }
 
 
@@ -397,8 +397,8 @@ void ProgressiveRenderer::run_tiles(int chunk) {
     const CameraFrame& cam = *job.pass_cam;
     const int i1 = std::min(cam.height, i0 + kTile), j1 = std::min(cam.width, j0 + kTile);
     PathStats stats;
-    const Scene& scene = job.preview_pass ? job.quick.scene() : job.scene;
-    Film& film = job.preview_pass ? job.quick.film() : job.film;
+    const Scene& scene = job.quick_pass ? job.quick.scene() : job.scene;
+    Film& film = job.quick_pass ? job.quick.film() : job.film;
     const PathContext ctx{job.world, scene.settings, stats};
     TileWork work{{i0, i1, j0, j1}, job.sample_base + std::uint64_t(chunk * job.chunk_spp),
                   job.chunk_samples(chunk), &cancel_flag(),
@@ -418,7 +418,7 @@ void ProgressiveRenderer::run_tiles(int chunk) {
 void ProgressiveRenderer::end_pass() {
   Job& job = *job_;
   if (job.aborted) return;
-  if (job.preview_pass) {
+  if (job.quick_pass) {
     // A quick pass: its own film and counts, published beside the real ones.
     const double seconds = std::chrono::duration<double>(Clock::now() - job.pass_start).count();
     std::lock_guard lock(publish_mutex_);
@@ -440,7 +440,7 @@ void ProgressiveRenderer::end_pass() {
   s.version += 1;
   s.counters = job.counters;
   s.done = (target > 0 && job.spp_done >= std::uint64_t(target)) || (stop_when_exact_ && job.exact);
-  s.preview = false;
+  s.quick = false;
   job_exact_published_ = job.exact;
   s.triangles = job.world.triangle_count();
   s.bvh_nodes = job.world.bvh() ? job.world.bvh()->node_count() : 0;

@@ -72,14 +72,14 @@ class ProgressiveRenderer {
   void set_threads(int threads);  // restarts the pool if running
   // Quick passes (the viewer's, render/quick_passes.h): for the first
   // moments of every new generation (QuickPasses::kSeconds of them, before
-  // its first full pass) run cheap passes of one path per sample, no
+  // its first full pass) run quick passes of one path per sample, no
   // splitting, no path reuse and one sample per pass, into a film of their
   // own published by quick_snapshot(), so an edit shows at full resolution
   // at once. They never touch the generation's own accumulation (snapshot()
   // stays what headless renders), and a quick pass is not abandoned by a
   // newer edit, so a drag shows images as fast as quick passes land. Off by
   // default.
-  void set_preview(bool on) { preview_enabled_ = on; }
+  void set_quick_passes(bool on) { quick_enabled_ = on; }
   // While the user drags (a camera orbit, a slider), edits come faster than
   // full-resolution quick passes: the quick passes then render one path per
   // stride x stride pixels (Snapshot::stride; QuickPasses::drag_stride). A
@@ -141,7 +141,7 @@ class ProgressiveRenderer {
   std::unique_ptr<Job> job_;
   std::atomic<bool> paused_{false};
   std::atomic<bool> running_{false};
-  std::atomic<bool> preview_enabled_{false};
+  std::atomic<bool> quick_enabled_{false};
   std::atomic<bool> dragging_{false};
   std::function<void()> on_publish_;
   std::atomic<bool> stop_when_exact_{false};

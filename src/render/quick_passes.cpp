@@ -6,7 +6,7 @@
 
 namespace whisker {
 
-bool cheap_differs(const RenderSettings& s) {
+bool quick_differs(const RenderSettings& s) {
   if (s.spp > 1) return true;
   if (!s.indirect) return false;  // splitting acts on indirect paths only
   for (int f : s.split)
@@ -14,7 +14,7 @@ bool cheap_differs(const RenderSettings& s) {
   return false;
 }
 
-RenderSettings cheap_settings(const RenderSettings& s) {
+RenderSettings quick_settings(const RenderSettings& s) {
   RenderSettings q = s;
   q.spp = 1;
   q.split = {1};
@@ -40,13 +40,13 @@ int QuickPasses::drag_stride(double full_pass_seconds, int width, int height) {
 }
 
 void QuickPasses::begin_generation(const Scene& scene, bool enabled) {
-  active_ = enabled && cheap_differs(scene.settings);
+  active_ = enabled && quick_differs(scene.settings);
   stride_ = 0;
   spp_ = 0;
   seconds_ = 0.0;
   if (!active_) return;
   scene_ = scene;
-  scene_.settings = cheap_settings(scene.settings);
+  scene_.settings = quick_settings(scene.settings);
 }
 
 bool QuickPasses::next_is_quick(std::uint64_t own_spp) {
@@ -81,7 +81,7 @@ void QuickPasses::publish(double seconds, std::uint64_t generation, Snapshot& q)
   q.version += 1;
   q.counters = {.passes = spp_, .seconds = seconds_};
   q.done = false;
-  q.preview = true;
+  q.quick = true;
   q.stride = stride_;
 }
 

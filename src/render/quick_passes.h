@@ -1,5 +1,6 @@
-// The viewer's quick passes (ProgressiveRenderer::set_preview): for the first
-// moments of every new generation, cheap passes (cheap_settings) into a film of their own, so that an edit shows at once.
+// The viewer's quick passes (ProgressiveRenderer::set_quick_passes): for the first
+// moments of every new generation, passes of the quick estimator
+// (quick_settings) into a film of their own, so that an edit shows at once.
 // They never touch the generation's own accumulation.
 #pragma once
 
@@ -12,12 +13,12 @@
 
 namespace whisker {
 
-// The cheap estimator, for the first moments after an edit: the same paths
+// The quick estimator, for the first moments after an edit: the same paths
 // at one sample per pass, one path per sample (no splitting), with
 // its own seed so its samples are independent of the settings' own.
-RenderSettings cheap_settings(const RenderSettings& s);
-// Whether the cheap estimator differs from the settings' own.
-bool cheap_differs(const RenderSettings& s);
+RenderSettings quick_settings(const RenderSettings& s);
+// Whether the quick estimator differs from the settings' own.
+bool quick_differs(const RenderSettings& s);
 
 class QuickPasses {
  public:
@@ -31,7 +32,7 @@ class QuickPasses {
   // 2 before one has been timed, at most 4, and only one dividing the size.
   static int drag_stride(double full_pass_seconds, int width, int height);
 
-  // A new generation: quick passes if `enabled` and the cheap estimator
+  // A new generation: quick passes if `enabled` and the quick estimator
   // differs from the scene's own (a resumed render has none).
   void begin_generation(const Scene& scene, bool enabled);
   // Whether the next pass is a quick one: until kSeconds of them have run
@@ -52,7 +53,7 @@ class QuickPasses {
   void publish(double seconds, std::uint64_t generation, Snapshot& q);
 
  private:
-  Scene scene_;  // the generation's scene with the cheap settings
+  Scene scene_;  // the generation's scene with the quick settings
   Film film_;
   bool active_ = false;
   int stride_ = 0;  // of the film (0: not set up in this generation)

@@ -1,6 +1,6 @@
 // What the window shows of a generation: its own passes (the snapshot the
 // headless mode would write), the viewer's quick passes
-// (ProgressiveRenderer::set_preview), or both combined.
+// (ProgressiveRenderer::set_quick_passes), or both combined.
 //
 // Both are unbiased estimates of the same pixel values, so any combination of
 // their per-pixel means with weights fixed in advance is unbiased too. The

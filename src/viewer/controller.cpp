@@ -218,7 +218,7 @@ static const Snapshot& live_image(const ViewerState& s) {
 
 void Controller::save() {
   const Snapshot& own = s.snap;
-  if (own.spp == 0 || own.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
+  if (own.spp == 0 || own.quick || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
     s.message = "nothing to save yet: the first full pass is not in";
     s.message_is_error = true;
     return;
@@ -272,7 +272,7 @@ void Controller::save() {
 }
 
 void Controller::hold() {
-  if (s.snap.spp == 0 || s.snap.preview || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
+  if (s.snap.spp == 0 || s.snap.quick || (s.shown.image.spp > 0 && s.shown.own_spp == 0)) {
     s.message = "nothing to hold yet";
     s.message_is_error = true;
     return;

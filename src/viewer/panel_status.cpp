@@ -51,7 +51,7 @@ std::string state_text(const ViewerState& s) {
 
 std::uint64_t shown_spp(const ViewerState& s) {
   const Snapshot& sn = s.snap;
-  return sn.generation == s.generation && !sn.preview ? sn.spp : 0;
+  return sn.generation == s.generation && !sn.quick ? sn.spp : 0;
 }
 
 namespace {
@@ -59,7 +59,7 @@ namespace {
 ProgressInfo progress_of(const ViewerState& s) {
   const Snapshot& sn = s.snap;
   ProgressInput in;
-  const bool same = sn.generation == s.generation && !sn.preview;
+  const bool same = sn.generation == s.generation && !sn.quick;
   in.spp_done = shown_spp(s);
   in.seconds_done = same ? sn.counters.seconds : 0.0;
   in.target_spp = s.applied.settings.target_spp;
@@ -108,7 +108,7 @@ std::uint64_t progress_lines(const ViewerState& s) {
   const double pixels = double(std::max(0, s.snap.width)) * std::max(0, s.snap.height);
   // Rays and passes are counted when a pass is published: until the first
   // pass of these settings is, they are not known yet ("-"), not zero.
-  const double secs = s.snap.generation == s.generation && !s.snap.preview ? s.snap.counters.seconds : 0.0;
+  const double secs = s.snap.generation == s.generation && !s.snap.quick ? s.snap.counters.seconds : 0.0;
   char rays[32] = "-", passes[32] = "-";
   if (secs > 0.0) {
     std::snprintf(rays, sizeof rays, "%s", human(s.snap.counters.rays / secs).c_str());

@@ -51,7 +51,7 @@ PixelReadout read_pixel(const Snapshot& s, int x, int y) {
   for (int c = 0; c < 3; ++c) r.rgb[c] = float(s.sum[3 * p + c] / n);
   r.luminance = luminance(glm::vec3(r.rgb[0], r.rgb[1], r.rgb[2]));
   r.samples = s.spp;
-  if (s.spp >= 2 && !s.preview && s.sum_sq.size() > p) {
+  if (s.spp >= 2 && !s.quick && s.sum_sq.size() > p) {
     // Population variance / (n - 1) = sample variance / n: the mean's variance.
     const double var = std::max(0.0, s.sum_sq[p] / n - r.luminance * r.luminance);
     r.std_error = std::sqrt(var / (n - 1.0));

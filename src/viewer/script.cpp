@@ -17,7 +17,7 @@ void ScriptedRun::apply_due_edit(ViewerState& s) {
   if (next_edit_ >= opt_.edits.size()) return;
   const ScriptedEdit& edit = opt_.edits[next_edit_];
   const Snapshot& sn = s.snap;
-  if (sn.generation != s.generation || sn.preview) return;
+  if (sn.generation != s.generation || sn.quick) return;
   if (sn.counters.passes < std::uint64_t(std::max(0, edit.after_pass)) && !sn.done) return;
   if (edit.light_position) s.edited.light.position = *edit.light_position;
   if (edit.orbit) orbit(s.edited.camera, float(edit.orbit->x), float(edit.orbit->y));
@@ -31,7 +31,7 @@ void ScriptedRun::apply_due_edit(ViewerState& s) {
 bool ScriptedRun::finished(const ViewerState& s) const {
   const Snapshot& sn = s.snap;
   return opt_.frames > 0 && next_edit_ == opt_.edits.size() && sn.generation == s.generation &&
-         !sn.preview && (sn.counters.passes >= std::uint64_t(opt_.frames) || sn.done);
+         !sn.quick && (sn.counters.passes >= std::uint64_t(opt_.frames) || sn.done);
 }
 
 }  // namespace whisker

@@ -113,12 +113,12 @@ struct Session {
     if (!own) return true;
     s.nodes = s.snap.bvh_nodes;
     // Numbers come from the generation's own passes only.
-    s.rse = s.snap.preview ? std::nan("") : s.snap.relative_standard_error();
+    s.rse = s.snap.quick ? std::nan("") : s.snap.relative_standard_error();
     if (s.snap.generation != rse_generation) {
       s.rse_history.clear();
       rse_generation = s.snap.generation;
     }
-    if (!s.snap.preview && std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
+    if (!s.snap.quick && std::isfinite(s.rse) && s.rse > 0.0) s.rse_history.push_back(float(std::log10(s.rse)));
     return true;
   }
 
@@ -411,7 +411,7 @@ int run_viewer(const ViewerOptions& opt) {
   // accumulation, so scripted runs compare with headless renders as before.
   // A scripted screenshot compares with the headless render after its
   // passes, so it shows the own passes alone.
-  renderer.set_preview(opt.screenshot_path.empty());
+  renderer.set_quick_passes(opt.screenshot_path.empty());
   // A deterministic estimate is exact after one pass; a scripted run renders
   // its --frames passes, as the headless mode with --frames does.
   renderer.set_stop_when_exact(opt.frames <= 0);

@@ -64,7 +64,7 @@ struct ViewerState {
   double last_change = 0.0;      // glfwGetTime() of the last edit
 
   Snapshot snap;   // the generation's own passes (what headless writes)
-  Snapshot quick;  // the quick passes after an edit (ProgressiveRenderer::set_preview)
+  Snapshot quick;  // the quick passes after an edit (ProgressiveRenderer::set_quick_passes)
   Shown shown;     // what the window draws and S saves: snap, quick, or both combined
   ProgressiveRenderer::PassProgress progress;  // the pass in flight
   // Relative standard error of snap; NaN before a pass of its own has two samples.
