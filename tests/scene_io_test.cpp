@@ -11,20 +11,12 @@
 
 #include "geometry/mesh.h"
 #include "scene/scene_io.h"
+#include "scene_refusal.h"
 #include "temp_dir.h"
 
 using namespace whisker;
 
 namespace {
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.json");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 const char* kBall = R"({"spheres": [{"center": [0,0,0], "radius": 10, "material": {"type": "diffuse"}}]})";
 
@@ -106,26 +98,26 @@ TEST(SceneFiles, FloatsAreWrittenByTheirShortestDigits) {
 }
 
 TEST(SceneFiles, SyntaxErrorNamesLineAndColumn) {
-  const std::string e = error_of("{\n  \"name\": \"x\",\n  \"light\": {\"position\": [1, 2,, 3]}\n}");
+  const std::string e = scene_refusal("{\n  \"name\": \"x\",\n  \"light\": {\"position\": [1, 2,, 3]}\n}");
   EXPECT_NE(e.find("bad.json:3:"), std::string::npos) << e;
   EXPECT_NE(e.find("invalid JSON"), std::string::npos) << e;
 }
 
 TEST(SceneFiles, TheReadingPassRefusesKeysGivenTwiceAndDeepNesting) {
   // A key given twice deep inside is named by its path, arrays indexed.
-  EXPECT_EQ(error_of(R"({"description": [0, {"x": [[{"k": 1}, {"k": 2, "deep": {"a": 1,
+  EXPECT_EQ(scene_refusal(R"({"description": [0, {"x": [[{"k": 1}, {"k": 2, "deep": {"a": 1,
                       "b": [], "a": 2}}]]}]})"),
             "bad.json: description[1].x[0][1].deep.a: given twice; keep one");
   // The same key in sibling objects is no duplicate; the document is built.
-  EXPECT_EQ(error_of(R"({"description": [{"k": 1}, {"k": 2}], "name": "n"})"), "(no error)");
+  EXPECT_EQ(scene_refusal(R"({"description": [{"k": 1}, {"k": 2}], "name": "n"})"), "(accepted)");
   // A syntax error after a key given twice is the file's first fault.
-  const std::string syntax = error_of("{\"name\": \"a\",\n \"name\": \"b\",}");
+  const std::string syntax = scene_refusal("{\"name\": \"a\",\n \"name\": \"b\",}");
   EXPECT_EQ(syntax.rfind("bad.json:2:", 0), 0u) << syntax;
   EXPECT_NE(syntax.find("invalid JSON"), std::string::npos) << syntax;
   // Nesting: 64 levels are read, the 65th is refused where it opens.
-  EXPECT_EQ(error_of("{\"description\":\n" + std::string(63, '[') + std::string(63, ']') + "}"),
-            "(no error)");
-  EXPECT_EQ(error_of("{\"description\":\n" + std::string(64, '[') + std::string(64, ']') + "}"),
+  EXPECT_EQ(scene_refusal("{\"description\":\n" + std::string(63, '[') + std::string(63, ']') + "}"),
+            "(accepted)");
+  EXPECT_EQ(scene_refusal("{\"description\":\n" + std::string(64, '[') + std::string(64, ']') + "}"),
             "bad.json:2:64: arrays and objects nested deeper than 64 levels");
 }
 
@@ -171,10 +163,10 @@ TEST(SceneFiles, BadFieldsAreNamed) {
       {R"([1, 2])", "bad.json: top level: must be an object"},
   };
   for (const Case& c : cases) {
-    const std::string e = error_of(c.text);
+    const std::string e = scene_refusal(c.text);
     EXPECT_NE(e.find(c.expect), std::string::npos) << "input: " << c.text << "\nmessage: " << e;
   }
-  EXPECT_EQ(error_of(kBall), "(no error)");
+  EXPECT_EQ(scene_refusal(kBall), "(accepted)");
 }
 
 TEST(SceneFiles, MissingFileNamesTheBundledScenes) {

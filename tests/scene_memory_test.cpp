@@ -9,6 +9,7 @@
 #include <string>
 
 #include "scene/scene_io.h"
+#include "scene_refusal.h"
 #include "scene/scene_memory.h"
 #include "run_whisker.h"
 #include "sanitized.h"
@@ -18,15 +19,6 @@ using namespace whisker;
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string refusal(const std::string& text) {
-  try {
-    parse_scene(text, "bad.json");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
 
 std::string camera(long long w, long long h) {
   return R"({"camera": {"width": )" + std::to_string(w) + R"(, "height": )" + std::to_string(h) + "}}";
@@ -60,14 +52,14 @@ TEST(SceneMemory, An8KImageIsAccepted) {
 
 TEST(SceneMemory, AFilmPastTheMachineIsRefusedNamingTheNeedAndTheMemory) {
   const std::string memory = memory_text(machine_memory(), false);
-  EXPECT_EQ(refusal(camera(200000, 200000)),
+  EXPECT_EQ(scene_refusal(camera(200000, 200000)),
             "bad.json: camera.width: 200000 x 200000 pixels: the film needs " +
                 memory_text(film_bytes(200000, 200000), true) + "; this machine has " + memory);
-  EXPECT_EQ(refusal(R"({"camera": {"height": 3000000000000}})"),
+  EXPECT_EQ(scene_refusal(R"({"camera": {"height": 3000000000000}})"),
             "bad.json: camera.height: 512 x 3000000000000 pixels: the film needs " +
                 memory_text(film_bytes(512, 3000000000000), true) + "; this machine has " + memory);
   // A side the viewer's texture cannot hold, on a film that fits.
-  EXPECT_EQ(refusal(camera(20000, 100)), "bad.json: camera.width: must be in [1, 16384], got 20000");
+  EXPECT_EQ(scene_refusal(camera(20000, 100)), "bad.json: camera.width: must be in [1, 16384], got 20000");
   // The command line says it the same way, in one line, exit 2.
   const TempDir temp("huge");
   const fs::path p = temp.path() / "huge.json";

@@ -9,21 +9,12 @@
 #include <vector>
 
 #include "scene/scene_io.h"
+#include "scene_refusal.h"
 #include "scene/settings.h"
 
 using namespace whisker;
 
 namespace {
-
-// The reader's message for a scene file's text, or "(no error)".
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.json");
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // A value other than the default for every setting, as command-line text: a
 // boolean flips; the others are listed.
@@ -61,7 +52,7 @@ TEST(SettingsTable, RangesOfTheFileAndTheCommandLineComeFromTheTable) {
   for (const SettingField& f : setting_fields()) {
     if (!std::holds_alternative<int RenderSettings::*>(f.member)) continue;
     const long long above = (long long)f.hi + 1;
-    const std::string e = error_of(R"({"settings": {")" + std::string(f.key) +
+    const std::string e = scene_refusal(R"({"settings": {")" + std::string(f.key) +
                                    "\": " + std::to_string(above) + "}}");
     EXPECT_NE(e.find("settings." + std::string(f.key) + ": must be in [" +
                      std::to_string((long long)f.lo) + ", " + std::to_string((long long)f.hi) +
