@@ -249,6 +249,35 @@ TEST_F(ViewerWindow, FresnelWithoutGlassRestartsNothing) {
   EXPECT_EQ(summary["generation"].get<int>(), 2) << "with glass, Fresnel restarts";
 }
 
+// The light moved out of the cat's room: the panel says so (the event log
+// records what it says) and the image is black; before the move, inside
+// the room, it says nothing.
+TEST_F(ViewerWindow, LightOutsideTheRoomIsSaid) {
+  fs::create_directories(kOut);
+  const fs::path log = kOut / "light-outside.events", shot = kOut / "light-outside.png";
+  fs::remove(log);
+  ASSERT_EQ(run_viewer("--scene cat --threads 1 --frames 3 --edit-after 1 --edit-light 1000,20,40 "
+                       "--edit-log '" + log.string() + "' --screenshot '" + shot.string() + "'",
+                       (kOut / "light-outside.log").string()),
+            0);
+  const std::string events = slurp(log);
+  const std::size_t edit = events.find("edit t="), moved = events.find("gen=2");
+  ASSERT_NE(moved, std::string::npos) << events;
+  const std::size_t said = events.find("light-outside t=");
+  ASSERT_NE(said, std::string::npos) << "the light outside the room was not said:\n" << events;
+  EXPECT_GT(said, moved) << "said before the light moved";
+  EXPECT_NE(events.find("text=the light", said), std::string::npos) << events;
+  EXPECT_NE(edit, std::string::npos);
+  const nlohmann::json summary = nlohmann::json::parse(slurp(shot.string() + ".json"));
+  const Rgb8 window = load_png(shot);
+  const Rect r = render_rect(summary);
+  int lit = 0;
+  for (int y = 0; y < r.h; ++y)
+    for (int x = 0; x < r.w; ++x)
+      for (int c = 0; c < 3; ++c) lit += window.at(r.x + x, r.y + y)[c] > 8;
+  EXPECT_EQ(lit, 0) << "a light outside the room lit the image";
+}
+
 // The default scene (the cat, indirect + AA) after two passes.
 TEST_F(ViewerWindow, CatMatchesHeadless) {
   expect_window_matches_headless("cat", "--frames 2", "--scene cat --frames 2");

@@ -87,18 +87,22 @@ bool stop_at_surfaces(const Camera& before, Camera& cam, const World& world) {
 }
 
 bool eye_inside_room(const Camera& cam, const World& world, std::string* why) {
-  const glm::dvec3 view = cam.look_at - cam.position;
+  return inside_room(cam.position, cam.look_at - cam.position, world, "the eye", why);
+}
+
+bool inside_room(const glm::dvec3& p, const glm::dvec3& view, const World& world, const char* who,
+                 std::string* why) {
   const glm::dvec3 dirs[7] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
                               glm::length(view) > 0.0 ? glm::normalize(view) : glm::dvec3(0, 0, -1)};
   const char* names[7] = {"+x", "-x", "+y", "-y", "+z", "-z", "the view direction"};
   for (int k = 0; k < 7; ++k) {
     const vec3 d = vec3(dirs[k]);
-    Ray ray = world.to_render(cam.position, d);
+    Ray ray = world.to_render(p, d);
     // Glass is looked through (a glass cat, a glass ball): follow the ray on.
     for (int step = 0; step < 8; ++step) {
       SurfaceHit hit;
       if (!world.intersect(ray, hit)) {
-        if (why) *why = std::string("the eye sees nothing along ") + names[k] + ": it is outside the room";
+        if (why) *why = std::string(who) + " sees nothing along " + names[k] + ": it is outside the room";
         return false;
       }
       const MaterialKind kind = hit.material ? hit.material->kind : MaterialKind::Diffuse;
@@ -107,7 +111,7 @@ bool eye_inside_room(const Camera& cam, const World& world, std::string* why) {
         continue;
       }
       if (glm::dot(hit.ng, d) > 0.0f) {
-        if (why) *why = std::string("the eye is behind a surface (seen along ") + names[k] + ")";
+        if (why) *why = std::string(who) + " is behind a surface (seen along " + names[k] + ")";
         return false;
       }
       break;

@@ -33,5 +33,9 @@ bool stop_at_surfaces(const Camera& before, Camera& cam, const World& world);
 // false, with what is wrong in `why`, when one misses everything or meets
 // the back of a surface (the eye is outside the room or inside an object).
 bool eye_inside_room(const Camera& cam, const World& world, std::string* why = nullptr);
+// The same for any point p (the light; `view` one more direction to try),
+// `who` naming it in `why`.
+bool inside_room(const glm::dvec3& p, const glm::dvec3& view, const World& world, const char* who,
+                 std::string* why = nullptr);
 
 }  // namespace whisker

@@ -288,6 +288,7 @@ void Controller::hold() {
 
 void Controller::carry_out(const PanelRequests& req, double now) {
   if (req.reset_camera) s.edited.camera = s.initial.camera;
+  if (req.reset_light) s.edited.light = s.initial.light;
   if (req.threads > 0) {
     renderer.set_threads(req.threads);
     s.threads = renderer.threads();

@@ -29,6 +29,10 @@ void EventLog::frame(const ViewerState& s, double t0, double t_shown, std::uint6
     if (!s.pending_load.empty()) std::fprintf(f_, "ask t=%.6f load=%s\n", t0, s.pending_load.c_str());
     pending_load_ = s.pending_load;
   }
+  if (s.light_outside != light_outside_) {
+    std::fprintf(f_, "light-outside t=%.6f text=%s\n", t0, s.light_outside.c_str());
+    light_outside_ = s.light_outside;
+  }
   if (s.eye_outside != outside_) {
     std::fprintf(f_, "outside t=%.6f text=%s\n", t0, s.eye_outside.c_str());
     outside_ = s.eye_outside;

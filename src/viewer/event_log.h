@@ -43,7 +43,7 @@ class EventLog {
  private:
   std::FILE* f_ = nullptr;
   std::uint64_t generation_ = 0;
-  std::string message_, pending_load_, outside_;
+  std::string message_, pending_load_, outside_, light_outside_;
 };
 
 }  // namespace whisker

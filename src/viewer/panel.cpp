@@ -340,6 +340,16 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
     if (ImGui::Button("Reset camera##outside")) req.reset_camera = true;
     tip("Back to the camera of the scene as loaded (Ctrl+Z also takes the move back).");
   }
+  if (!s.light_outside.empty()) {
+    // No light reaches the room's inside from out there: the image is black.
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
+    ImGui::PushTextWrapPos(0.0f);
+    ImGui::TextUnformatted(("Light outside the room: " + s.light_outside + ".").c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::PopStyleColor();
+    if (ImGui::Button("Reset light##outside")) req.reset_light = true;
+    tip("Back to the light of the scene as loaded (Ctrl+Z also takes the move back).");
+  }
   // The sections scroll on their own when the window is short; the status
   // lines above always stay in view.
   ImGui::BeginChild("##sections", ImVec2(0, 0), false);

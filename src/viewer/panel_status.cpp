@@ -183,6 +183,8 @@ std::uint64_t status_section(const ViewerState& s, double now) {
     ImGui::Text("noise: none, exact (a deterministic estimate)");
   else if (std::isfinite(s.rse))
     ImGui::Text("noise: %.3g %% of the mean%s", 100.0 * s.rse, stale ? "  (before the edit)" : "");
+  else if (!stale && sn.generation != 0 && sn.spp >= 2)
+    ImGui::Text("noise: - (a black image: no light reaches it)");
   else
     ImGui::Text("noise: - (needs 2 spp)%s", stale ? "  (before the edit)" : "");
   tip("Relative standard error of the image mean: how far the average brightness may "

@@ -87,6 +87,7 @@ struct Session {
   std::unique_ptr<World> room{};
   Scene room_scene{};
   Camera room_checked_camera{};
+  glm::dvec3 room_checked_light{std::nan("")};
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
 
@@ -213,6 +214,7 @@ struct Session {
       room_scene = s.edited;
       room_checked_camera = Camera{};
       room_checked_camera.width = -1;  // checked again below
+      room_checked_light = glm::dvec3(std::nan(""));
     }
     const Camera& c = s.applied.camera;
     if (c.position != room_checked_camera.position || c.look_at != room_checked_camera.look_at ||
@@ -220,6 +222,12 @@ struct Session {
       room_checked_camera = c;
       std::string why;
       s.eye_outside = eye_inside_room(c, *room, &why) ? std::string() : why;
+    }
+    const glm::dvec3 light = s.applied.light.position;
+    if (light != room_checked_light) {
+      room_checked_light = light;
+      std::string why;
+      s.light_outside = inside_room(light, glm::dvec3(0, -1, 0), *room, "the light", &why) ? std::string() : why;
     }
   }
 

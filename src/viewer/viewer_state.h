@@ -22,6 +22,7 @@ struct PanelRequests {
   bool restart = false;
   bool save = false;
   bool reset_camera = false;
+  bool reset_light = false;
   bool print_camera = false;
   bool quit = false;
   std::string load_scene;  // name or path
@@ -90,6 +91,8 @@ struct ViewerState {
   // Not empty when the applied camera's eye is outside the room or inside an
   // object (eye_inside_room): the panel says so and offers Reset camera.
   std::string eye_outside;
+  // The same for the light (a light out there leaves the room black).
+  std::string light_outside;
 
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
