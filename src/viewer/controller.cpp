@@ -106,7 +106,10 @@ void Controller::save_scene() {
     });
     s.saved_scene = s.applied;
     s.have_saved_scene = true;
-    s.message = "saved the scene as " + path;
+    // The folder by its full name, as Save names it for the image.
+    std::error_code ec;
+    const fs::path full = fs::absolute(path, ec).lexically_normal();
+    s.message = "saved the scene as " + (ec ? path : full.string());
     if (stem != wanted) s.message += " (" + wanted + ".json was taken)";
     s.message_is_error = false;
     std::printf("%s\n", s.message.c_str());
@@ -288,6 +291,8 @@ void Controller::hold() {
 
 void Controller::carry_out(const PanelRequests& req, double now) {
   if (req.reset_camera) s.edited.camera = s.initial.camera;
+  // A note about the camera's last move goes with the move.
+  if ((req.reset_camera || req.undo || req.redo) && s.message == kCameraStopped) s.message.clear();
   if (req.reset_light) s.edited.light = s.initial.light;
   if (req.threads > 0) {
     renderer.set_threads(req.threads);

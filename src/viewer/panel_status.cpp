@@ -262,10 +262,19 @@ void compare_section(ViewerState& s, PanelRequests& req) {
   tip("Keep a copy of the image as it is now, to compare with the live render after "
       "an edit (e.g. Fresnel on against off at the same samples per pixel).");
   ImGui::SameLine();
-  if (s.held.spp > 0)
-    ImGui::TextDisabled("held: %s", s.held_note.c_str());
-  else
+  if (s.held.spp > 0) {
+    // What fits beside the button, ending in "..." where the note is cut;
+    // the whole note in the tooltip.
+    const std::string note = "held: " + s.held_note;
+    const float room = ImGui::GetContentRegionAvail().x;
+    std::string shown = note;
+    while (shown.size() > 4 && ImGui::CalcTextSize(shown.c_str()).x > room)
+      shown = note.substr(0, shown.size() - 4) + "...";
+    ImGui::TextDisabled("%s", shown.c_str());
+    if (shown != note) tip(note.c_str());
+  } else {
     ImGui::TextDisabled("nothing held");
+  }
   ImGui::BeginDisabled(s.held.spp == 0);
   static const char* modes[] = {"live only", "held only", "wipe: held left, live right"};
   ImGui::Combo("show", &s.compare, modes, 3);

@@ -178,7 +178,7 @@ struct Session {
     mouse.update(s.edited.camera, read_mouse(), image_scale > 0.0f ? image_scale : 1.0f,
                  room.get(), &stopped);
     if (stopped) {
-      s.message = "the camera stopped at a surface";
+      s.message = kCameraStopped;
       s.message_is_error = false;
     }
 

@@ -16,6 +16,9 @@
 
 namespace whisker {
 
+// The panel's note when a camera move was cut short at a surface.
+inline constexpr const char* kCameraStopped = "the camera stopped at a surface";
+
 // What the panel (or a key) asked for this frame; the loop carries it out.
 struct PanelRequests {
   bool toggle_pause = false;
