@@ -16,6 +16,7 @@
 #include "app/signals.h"
 #include "io/accumulation_io.h"
 #include "io/image_io.h"
+#include "io/render_record.h"
 #include "io/stats_io.h"
 #include "render/film_denoise.h"
 #include "render/progressive.h"
@@ -26,45 +27,6 @@
 namespace whisker {
 
 namespace {
-
-// The scene's camera as compact JSON (the scene file's "camera" object).
-std::string camera_json(const Scene& scene) {
-  return nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump();
-}
-
-// The samples per pixel a deterministic estimate stands for: its target
-// (one pass of it is exact), or more if more were rendered.
-std::uint64_t stands_for_spp(const Scene& scene, const Snapshot& snap) {
-  return std::max<std::uint64_t>(snap.spp, std::uint64_t(std::max(0, scene.settings.target_spp)));
-}
-
-// What the image is and how it was made, for the EXR header; a
-// deterministic estimate says so, and the samples per pixel it stands for.
-ImageAttributes render_attributes(const HeadlessOptions& o, const Scene& scene,
-                                  const Snapshot& snap) {
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3f", snap.counters.seconds);
-  ImageAttributes a{{"whisker.scene", scene.name},
-          {"whisker.units", o.display_units
-                                ? "display: 1.0 = 255^2.2 radiance, the report's white"
-                                : "scene: radiance, light intensity applied"},
-          {"whisker.spp", std::to_string(snap.spp)},
-          {"whisker.passes", std::to_string(snap.counters.passes)},
-          {"whisker.seed", std::to_string(scene.settings.seed)},
-          {"whisker.seconds", seconds},
-          {"whisker.camera", camera_json(scene)},
-          {"whisker.light", nlohmann::json{{"position", {scene.light.position.x,
-                                                         scene.light.position.y,
-                                                         scene.light.position.z}},
-                                           {"intensity", scene.light.intensity}}
-                                .dump()},
-          {"whisker.settings", settings_to_json(scene.settings).dump()}};
-  if (deterministic_estimate(scene)) {
-    a.emplace_back("whisker.exact", "true");
-    a.emplace_back("whisker.stands_for_spp", std::to_string(stands_for_spp(scene, snap)));
-  }
-  return a;
-}
 
 // The outputs, in the order written.
 std::vector<std::string> output_names(const HeadlessOptions& o) {
@@ -151,7 +113,7 @@ std::string write_denoised(const HeadlessOptions& o, const Scene& scene, const S
   if (ext == ".png") {
     write_png(o.out_denoised, img);
   } else {
-    ImageAttributes a = render_attributes(o, scene, snap);
+    ImageAttributes a = render_record(scene, snap, o.display_units);
     a.emplace_back("whisker.image", std::string("denoised (") + rec["filter"].get<std::string>() +
                                         "), not the raw estimate; the stats give its estimated error");
     write_float_image(o.out_denoised, o.display_units ? display_referred(img) : img, a);
@@ -174,7 +136,7 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
   }
   if (!o.out_float.empty()) {
     write_float_image(o.out_float, o.display_units ? display_referred(img) : img,
-                      render_attributes(o, scene, snap));
+                      render_record(scene, snap, o.display_units));
     note_written(o, ++written);
   }
   if (!o.out_sum.empty()) {
@@ -203,7 +165,7 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
 
   if (!o.stats_json.empty()) {
     RenderStats st{scene.name, &snap, threads, &scene.settings, {}};
-    st.extra.emplace_back("camera", RenderStats::JsonText{camera_json(scene)});
+    st.extra.emplace_back("camera", RenderStats::JsonText{camera_json(scene.camera).dump()});
     st.extra.emplace_back("exact", RenderStats::JsonText{exact ? "true" : "false"});
     if (exact)
       st.extra.emplace_back("stands_for_spp",

@@ -100,10 +100,10 @@ RenderIdentity render_identity(const Scene& scene) {
   id.scene = scene.name;
   // The scene as its file would say it (camera, light, objects), without the
   // settings, and the triangles its meshes loaded to.
-  json j = json::parse(scene_to_json(scene));
+  json j = scene_json(scene);
   j.erase("settings");
   Fnv1a h;
-  const std::string text = j.dump();
+  const std::string text = j.dump(-1, ' ', false, json::error_handler_t::replace);
   h.add(text.data(), text.size());
   for (const MeshObject& m : scene.meshes) {
     if (!m.mesh) continue;

@@ -388,6 +388,8 @@ std::string camera_to_json(const Camera& camera) {
   return json{{"camera", to_json(camera)}}.dump(2);
 }
 
+json camera_json(const Camera& camera) { return to_json(camera); }
+
 namespace {
 // The path of the OBJ `m` was loaded from, as a file in `dir` should name it.
 std::string mesh_path_from(const MeshObject& m, const fs::path& dir) {
@@ -404,6 +406,12 @@ std::string mesh_path_from(const MeshObject& m, const fs::path& dir) {
 }  // namespace
 
 std::string scene_to_json(const Scene& s, const fs::path& file) {
+  // A name from a file name (the scene's stem, a --mesh path) may hold bytes
+  // that are not UTF-8; they are written as U+FFFD rather than thrown on.
+  return scene_json(s, file).dump(2, ' ', false, json::error_handler_t::replace);
+}
+
+json scene_json(const Scene& s, const fs::path& file) {
   json j;
   j["name"] = s.name;
   j["camera"] = to_json(s.camera);
@@ -426,9 +434,7 @@ std::string scene_to_json(const Scene& s, const fs::path& file) {
                              {"vertex_normals", m.vertex_normals},
                              {"material", to_json(m.material)}});
   }
-  // A name from a file name (the scene's stem, a --mesh path) may hold bytes
-  // that are not UTF-8; they are written as U+FFFD rather than thrown on.
-  return j.dump(2, ' ', false, json::error_handler_t::replace);
+  return j;
 }
 
 }  // namespace whisker

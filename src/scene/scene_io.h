@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <string>
+
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "scene/scene.h"
@@ -38,8 +40,13 @@ Scene parse_scene(const std::string& text, const std::string& source_name,
 // that file's folder, or absolute when no relative path leads there. Without
 // it they stay as the scene file wrote them.
 std::string scene_to_json(const Scene& scene, const std::filesystem::path& file = {});
+// The same as a document (its strings as the scene holds them: dump with
+// error_handler_t::replace where they may not be UTF-8).
+nlohmann::json scene_json(const Scene& scene, const std::filesystem::path& file = {});
 // The camera alone as scene-file JSON ("camera": {...}).
 std::string camera_to_json(const Camera& camera);
+// The camera's object itself ({"position": ..., ...}).
+nlohmann::json camera_json(const Camera& camera);
 
 // Where a mesh path resolves: relative to the scene file, then in each of
 // asset_dirs(). Throws SceneError naming them.

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/render_record.h"
 #include "render/film.h"
 #include "scene/file_name.h"
 #include "scene/scene_io.h"
@@ -160,24 +161,6 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     s.message = e.what();
     s.message_is_error = true;
   }
-}
-
-ImageAttributes render_record(const Scene& scene, const Snapshot& sn, bool display_units) {
-  char seconds[32];
-  std::snprintf(seconds, sizeof seconds, "%.3f", sn.counters.seconds);
-  const nlohmann::json light{
-      {"position", {scene.light.position.x, scene.light.position.y, scene.light.position.z}},
-      {"intensity", scene.light.intensity}};
-  return {{"whisker.scene", scene.name},
-          {"whisker.units", display_units ? "display: 1.0 = 255^2.2 radiance, the report's white"
-                                          : "scene: radiance, light intensity applied"},
-          {"whisker.spp", std::to_string(sn.spp)},
-          {"whisker.passes", std::to_string(sn.counters.passes)},
-          {"whisker.seed", std::to_string(scene.settings.seed)},
-          {"whisker.seconds", seconds},
-          {"whisker.camera", nlohmann::json::parse(camera_to_json(scene.camera))["camera"].dump()},
-          {"whisker.light", light.dump()},
-          {"whisker.settings", settings_to_json(scene.settings).dump()}};
 }
 
 // The image the window shows, as a mean per pixel (spp 1): the live one, the

@@ -1,6 +1,8 @@
 // The viewer's actions on the renderer: every restart goes through here.
 #pragma once
 
+#include "io/render_record.h"
+
 #include <string>
 
 #include "io/image_io.h"
@@ -20,11 +22,6 @@ void request_for_drop(const std::string& path, PanelRequests& req, std::string& 
 // True if the edit only raises the target samples per pixel (or lifts it to
 // 0 = never stop): the render goes on instead of restarting.
 bool only_target_raised(const Scene& applied, const Scene& edited);
-
-// What a saved float image records in its EXR header (as the headless
-// --out-float): scene, units, spp, passes, seed, render time, camera, light
-// and settings, as whisker.* string attributes.
-ImageAttributes render_record(const Scene& scene, const Snapshot& snap, bool display_units);
 
 struct Controller {
   ProgressiveRenderer& renderer;
