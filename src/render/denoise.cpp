@@ -115,15 +115,12 @@ void gaussian(std::vector<float>& v, int w, int h, float sigma) {
 // A filter's error at scales wider than its own blur is mostly its bias
 // (the blur of what the features do not explain: a shadow's edge, light
 // across a silhouette), which no filtering lowers; the output's bias is
-// now (I - G) of the filter's, whose block means at scales past G's width
+// (I - G) of the filter's, whose block means at scales past G's width
 // are near zero. G's noise is 1 / (4 pi sigma^2) of a pixel's variance.
 //
-// G's width, 1 px, is measured (bench/denoise_error.sh, the cat at 4, 16
-// and 64 spp, both filters): a G a few pixels wide leaves the filter's bias
-// between G's width and the filter's, and that lost at 16 px (sigma 4:
-// 0.99 of the raw error at 16 spp; sigma 2: 1.05 at 64 spp); with 1 px
-// every scale of 1-16 px is below the raw image's, the pixel scale 3-5
-// times below.
+// G's width, 1 px, is chosen by bench/denoise_error.sh (docs/PERFORMANCE.md,
+// "The denoised copy"): a wider G leaves the filter's bias between G's width
+// and the filter's.
 constexpr float kCoarseSigma = 1.0f;
 
 void restore_coarse_band(std::span<const float> raw, std::vector<float>& f, int w, int h, float sigma) {
