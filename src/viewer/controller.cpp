@@ -225,7 +225,7 @@ void Controller::save() {
     const Snapshot shown = debug ? s.debug.image : shown_means(s);
     const std::vector<unsigned char> rgb =
         debug ? map_like_display(shown, DisplayParams{1.0f, 1.0f, 0, 0})
-        : s.display.mode == 1 ? map_like_display(own, s.display)
+        : s.display.mode == kViewNoise ? map_like_display(own, s.display)
                               : map_like_display(shown, s.display);
     write_png_rgb8(base + ".png", shown.width, shown.height, rgb);
     // The float file is the live render's mean (with quick samples combined

@@ -12,7 +12,7 @@ namespace whisker {
 struct DisplayParams {
   float exposure = 1.0f;  // linear scale
   float gamma = 2.2f;
-  int mode = 0;           // 0 image, 1 relative standard error per pixel
+  int mode = 0;           // a ViewMode (viewer/debug_views.h): kViewImage, kViewNoise, ...
   int tonemap = 0;        // 0 the report's mapping (clip), 1 ACES filmic
 };
 

@@ -89,7 +89,7 @@ static void display_section(ViewerState& s) {
   if (ImGui::Button("Report mapping")) {
     s.exposure_stops = 0.0f;
     s.display.gamma = 2.2f;
-    s.display.mode = 0;
+    s.display.mode = kViewImage;
     s.display.tonemap = 0;
   }
   tip("Back to exposure 0, gamma 2.2, report tone curve, image view.");

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "viewer/debug_views.h"
+
 namespace whisker {
 
 ProgressInfo estimate_progress(const ProgressInput& in) {
@@ -118,7 +120,7 @@ std::vector<unsigned char> map_like_display(const Snapshot& s, const DisplayPara
     float mean[3];
     for (int c = 0; c < 3; ++c) mean[c] = float(s.sum[3 * k + c]) * inv;
     float v[3];
-    if (p.mode == 1) {
+    if (p.mode == kViewNoise) {
       const float m = luminance(glm::vec3(mean[0], mean[1], mean[2]));
       const float sq = s.sum_sq.size() > k ? s.sum_sq[k] : 0.0f;
       const float var = std::max(sq / std::max(spp, 1.0f) - m * m, 0.0f);

@@ -126,11 +126,11 @@ struct Session {
   // The image on the GPU: what is shown, or in the noise view the own
   // passes (their sums of squares belong to their sums).
   void upload_image() {
-    if (s.display.mode == 1)
+    if (s.display.mode == kViewNoise)
       display.upload(s.snap, true);
     else
       display.upload(s.shown.image, false);
-    uploaded_mode = s.display.mode == 1;
+    uploaded_mode = s.display.mode == kViewNoise;
   }
   bool uploaded_mode = false;
 
@@ -198,7 +198,7 @@ struct Session {
                   rect.h / f.fb_per_win};
     draw_image_overlays(s, image_area, opt.screenshot_path.empty(), &readout);
     // Switching to the noise view needs the sums of squares on the GPU.
-    if ((s.display.mode == 1) != uploaded_mode) upload_image();
+    if ((s.display.mode == kViewNoise) != uploaded_mode) upload_image();
     return rect;
   }
 
@@ -266,7 +266,7 @@ struct Session {
     } else if (held && s.compare == kCompareHeld) {
       held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
     } else {
-      const Snapshot& live = s.display.mode == 1 ? s.snap : s.shown.image;
+      const Snapshot& live = s.display.mode == kViewNoise ? s.snap : s.shown.image;
       display.draw(rect, f.fb_h, float(live.spp), s.display);
       if (held && s.compare == kCompareWipe)
         held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
