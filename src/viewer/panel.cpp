@@ -318,6 +318,19 @@ static void objects_section(Scene& e) {
   }
 }
 
+// "Camera outside the room: <why>." in red and a Reset button, when `why`
+// is not empty; the button sets `reset`. `what`: "Camera", `thing`: "camera".
+static void outside_warning(const char* what, const char* thing, const std::string& why, bool& reset) {
+  if (why.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted((std::string(what) + " outside the room: " + why + ".").c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::PopStyleColor();
+  if (ImGui::Button((std::string("Reset ") + thing + "##outside").c_str())) reset = true;
+  tip((std::string("Back to the ") + thing + " of the scene as loaded (Ctrl+Z also takes the move back).").c_str());
+}
+
 void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                 double now, PanelRequests& req) {
   ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
@@ -330,26 +343,9 @@ void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
 
   s.bar_spp = status_section(s, now);
   controls(s, req);
-  if (!s.eye_outside.empty()) {
-    // The image is black or wrong from out there: say so, and the way back.
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextUnformatted(("Camera outside the room: " + s.eye_outside + ".").c_str());
-    ImGui::PopTextWrapPos();
-    ImGui::PopStyleColor();
-    if (ImGui::Button("Reset camera##outside")) req.reset_camera = true;
-    tip("Back to the camera of the scene as loaded (Ctrl+Z also takes the move back).");
-  }
-  if (!s.light_outside.empty()) {
-    // No light reaches the room's inside from out there: the image is black.
-    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.45f, 0.35f, 1));
-    ImGui::PushTextWrapPos(0.0f);
-    ImGui::TextUnformatted(("Light outside the room: " + s.light_outside + ".").c_str());
-    ImGui::PopTextWrapPos();
-    ImGui::PopStyleColor();
-    if (ImGui::Button("Reset light##outside")) req.reset_light = true;
-    tip("Back to the light of the scene as loaded (Ctrl+Z also takes the move back).");
-  }
+  // From outside the room the image is black or wrong: say so, and the way back.
+  outside_warning("Camera", "camera", s.eye_outside, req.reset_camera);
+  outside_warning("Light", "light", s.light_outside, req.reset_light);
   // The sections scroll on their own when the window is short; the status
   // lines above always stay in view.
   ImGui::BeginChild("##sections", ImVec2(0, 0), false);
