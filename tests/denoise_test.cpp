@@ -35,6 +35,12 @@ struct Halves {
     return DenoiseInput{w, h, a, b, albedo, albedo, normal, normal, depth, depth};
   }
   std::size_t at(int x, int y, int c) const { return (std::size_t(y) * w + x) * 3 + c; }
+  // The raw image: the mean of the two halves.
+  std::vector<float> raw() const {
+    std::vector<float> m(a.size());
+    for (std::size_t k = 0; k < m.size(); ++k) m[k] = 0.5f * (a[k] + b[k]);
+    return m;
+  }
 };
 
 constexpr DenoiseFilter kFilters[] = {DenoiseFilter::Fast, DenoiseFilter::Quality};
@@ -215,8 +221,7 @@ TEST(Denoise, ErrorEstimateOfAKnownBiasIsNearTheTrueError) {
         r.rgb_b[i] = float(sb / n) + bias;
         r.rgb[i] = 0.5f * (r.rgb_a[i] + r.rgb_b[i]);
       }
-  std::vector<float> raw(img.a.size());
-  for (std::size_t k = 0; k < raw.size(); ++k) raw[k] = 0.5f * (img.a[k] + img.b[k]);
+  const std::vector<float> raw = img.raw();
   for (int k : {1, 2, 4, 8, 16}) {
     const ScaleError e = estimate_error(img.input(), r, k);
     const std::string at = std::to_string(k) + " px";
@@ -242,8 +247,7 @@ TEST(Denoise, FiltersErrorEstimateIsWithinAFactorOfTheTrueError) {
   Halves img(256, 256);
   const std::vector<float> truth = shadowed_gradient(img);
   add_noise(img, truth, 0.1f, 8);
-  std::vector<float> raw(img.a.size());
-  for (std::size_t k = 0; k < raw.size(); ++k) raw[k] = 0.5f * (img.a[k] + img.b[k]);
+  const std::vector<float> raw = img.raw();
   for (DenoiseFilter f : kFilters) {
     const DenoiseResult r = denoise(img.input(), {f, 2});
     for (int k : {1, 2, 4, 8, 16}) {
@@ -292,8 +296,7 @@ TEST(Denoise, CoarseBandIsTheRawImages) {
   Halves img(256, 256);
   const std::vector<float> truth = shadowed_gradient(img);
   add_noise(img, truth, 0.02f, 21);
-  std::vector<float> raw(img.a.size());
-  for (std::size_t k = 0; k < raw.size(); ++k) raw[k] = 0.5f * (img.a[k] + img.b[k]);
+  const std::vector<float> raw = img.raw();
   for (DenoiseFilter f : kFilters) {
     const DenoiseResult r = denoise(img.input(), {f, 2});
     for (int k : {16, 32}) {
