@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <thread>
+#include <vector>
 
 #include "render/integrator.h"
 #include "render/light_cache.h"
@@ -120,6 +121,38 @@ TEST(Progressive, ReachingTheTargetStops) {
   EXPECT_EQ(snap.spp, 7u);  // 3 + 3 + 1: the last pass is trimmed to the target
   EXPECT_EQ(snap.counters.passes, 3u);
   EXPECT_TRUE(snap.done);
+}
+
+// The viewer's growing passes: at 16 samples per pass the first image of a
+// generation is one sample, and the passes double (1, 1, 2, 4, 8, 16, 16)
+// up to the pass size: 48 spp in 7 passes instead of 3, the same samples.
+TEST(Progressive, GrowingPassesStartAtOneSample) {
+  Snapshot last;
+  for (const bool growing : {false, true}) {
+    ProgressiveRenderer r(2);
+    r.set_growing_passes(growing);
+    std::vector<std::uint64_t> published;  // each pass's spp, seen by the publishing worker
+    r.set_on_publish([&] {
+      Snapshot s;
+      r.snapshot(s);
+      published.push_back(s.spp);
+    });
+    const auto gen = r.set_scene(small_scene(16, 48));
+    r.start();
+    ASSERT_TRUE(r.wait_for(gen, 48));
+    r.stop();
+    r.take_snapshot(last);
+    EXPECT_EQ(last.spp, 48u);
+    const std::vector<std::uint64_t> expected =
+        growing ? std::vector<std::uint64_t>{1, 2, 4, 8, 16, 32, 48} : std::vector<std::uint64_t>{16, 32, 48};
+    EXPECT_EQ(published, expected) << (growing ? "growing" : "fixed") << " passes";
+    EXPECT_EQ(last.counters.passes, expected.size());
+  }
+  // The same samples as 16-sample passes, summed in another order.
+  const Snapshot fixed = render(small_scene(16, 48), 2);
+  ASSERT_EQ(fixed.sum.size(), last.sum.size());
+  for (std::size_t k = 0; k < fixed.sum.size(); ++k)
+    ASSERT_NEAR(fixed.sum[k], last.sum[k], 1e-5 * std::abs(fixed.sum[k]) + 1e-9);
 }
 
 TEST(Progressive, QuickPassesComeFirstAtFullResolution) {

@@ -249,6 +249,33 @@ TEST_F(ViewerWindow, FresnelWithoutGlassRestartsNothing) {
   EXPECT_EQ(summary["generation"].get<int>(), 2) << "with glass, Fresnel restarts";
 }
 
+// Many samples per pass (16): the window's first image of the render's own
+// estimator comes after one sample and refines pass by pass (1, 2, 4, 8,
+// 16), where it stood still at the quick passes' image until a whole pass of
+// 16 had finished. Read from the event log of an interactive run (quick
+// passes on: no screenshot).
+TEST_F(ViewerWindow, ManySamplesPerPassRefineFromTheFirstSample) {
+  fs::create_directories(kOut);
+  const fs::path log = kOut / "growing.events";
+  fs::remove(log);
+  ASSERT_EQ(run_viewer("--scene three-balls --indirect on --aa on --threads 1 --spp 16 --frames 1 "
+                       "--edit-log '" + log.string() + "'",
+                       (kOut / "growing.log").string()),
+            0);
+  std::istringstream events(slurp(log));
+  std::vector<int> shown;  // the own samples in the image shown, as they change
+  for (std::string line; std::getline(events, line);) {
+    const std::size_t at = line.find(" shown_own=");
+    if (line.rfind("frame ", 0) != 0 || at == std::string::npos) continue;
+    const int own = std::stoi(line.substr(at + 11));
+    if (own > 0 && (shown.empty() || shown.back() != own)) shown.push_back(own);
+  }
+  ASSERT_FALSE(shown.empty()) << slurp(log);
+  EXPECT_EQ(shown.back(), 16) << "the run ends at its 16 samples";
+  EXPECT_LT(shown.front(), 16) << "the first image of the render's own waited for a whole pass";
+  EXPECT_GE(shown.size(), 3u) << "the image did not refine before the first pass of 16";
+}
+
 // The light moved out of the cat's room: the panel says so (the event log
 // records what it says) and the image is black; before the move, inside
 // the room, it says nothing.

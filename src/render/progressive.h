@@ -87,6 +87,14 @@ class ProgressiveRenderer {
   // when the drag ends the quick passes go back to full resolution.
   // Thread-safe.
   void set_dragging(bool on) { dragging_ = on; }
+  // Growing passes (the viewer's): a generation's own passes start at one
+  // sample per pixel and double up to its settings' spp (1, 1, 2, 4, ...),
+  // so that with many samples per pass its first image comes after one
+  // sample, not a whole pass of them, and the image keeps refining. The
+  // samples are the same ones; only the order of the double additions of
+  // their float values differs (as it does for any pass size). Off by
+  // default: headless passes are exactly --spp.
+  void set_growing_passes(bool on) { growing_ = on; }
   // Called by a worker after each pass it publishes (own or quick), outside
   // the renderer's locks: a window wakes its event loop with it. Set before
   // start().
@@ -143,6 +151,7 @@ class ProgressiveRenderer {
   std::atomic<bool> running_{false};
   std::atomic<bool> quick_enabled_{false};
   std::atomic<bool> dragging_{false};
+  std::atomic<bool> growing_{false};
   std::function<void()> on_publish_;
   std::atomic<bool> stop_when_exact_{false};
   std::atomic<bool> features_{false};

@@ -1,10 +1,11 @@
 // A scripted run (--frames, --edit-after / --edit-light): it renders exactly
-// `frames` passes of its last generation, as the headless mode does, so its
+// `frames` passes' samples of its last generation, as the headless mode does, so its
 // screenshot compares with that render; its edits go through the same path
 // as the panel's.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 #include "viewer/viewer_options.h"
 #include "viewer/viewer_state.h"
@@ -24,6 +25,8 @@ class ScriptedRun {
   bool finished(const ViewerState& s) const;
 
  private:
+  std::uint64_t samples(int passes) const;
+
   const ViewerOptions& opt_;
   std::size_t next_edit_ = 0;
 };

@@ -420,6 +420,7 @@ int run_viewer(const ViewerOptions& opt) {
   // A scripted screenshot compares with the headless render after its
   // passes, so it shows the own passes alone.
   renderer.set_quick_passes(opt.screenshot_path.empty());
+  renderer.set_growing_passes(opt.screenshot_path.empty());
   // A deterministic estimate is exact after one pass; a scripted run renders
   // its --frames passes, as the headless mode with --frames does.
   renderer.set_stop_when_exact(opt.frames <= 0);
