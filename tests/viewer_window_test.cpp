@@ -111,7 +111,8 @@ Diff compare_render_area(const Rgb8& shot, const Rect& r, const Rgb8& ref) {
 // screenshot's render area against the headless PNG.
 void expect_window_matches_headless(const std::string& name, const std::string& viewer_args,
                                     const std::string& headless_args, Rgb8* shot_out = nullptr,
-                                    nlohmann::json* summary_out = nullptr) {
+                                    nlohmann::json* summary_out = nullptr,
+                                    const std::string& headless_out = "--out") {
   fs::create_directories(kOut);
   const fs::path shot = kOut / (name + "-window.png");
   const fs::path ref = kOut / (name + "-headless.png");
@@ -121,7 +122,7 @@ void expect_window_matches_headless(const std::string& name, const std::string& 
                        (kOut / (name + "-window.log")).string()),
             0)
       << slurp(kOut / (name + "-window.log"));
-  ASSERT_EQ(run_headless(headless_args + " --out '" + ref.string() + "'",
+  ASSERT_EQ(run_headless(headless_args + " " + headless_out + " '" + ref.string() + "'",
                          (kOut / (name + "-headless.log")).string()),
             0)
       << slurp(kOut / (name + "-headless.log"));
@@ -303,6 +304,28 @@ TEST_F(ViewerWindow, LightOutsideTheRoomIsSaid) {
     for (int x = 0; x < r.w; ++x)
       for (int c = 0; c < 3; ++c) lit += window.at(r.x + x, r.y + y)[c] > 8;
   EXPECT_EQ(lit, 0) << "a light outside the room lit the image";
+}
+
+// The denoised view (--denoised, the panel's Denoised box): the window shows
+// the headless denoised copy of the same passes (--out-denoised with the
+// fast filter), pixel for pixel, and the panel says it is denoised; the raw
+// window differs from it.
+TEST_F(ViewerWindow, DenoisedViewIsTheHeadlessDenoisedImage) {
+  Rgb8 denoised, raw;
+  nlohmann::json summary;
+  expect_window_matches_headless("denoised", "--scene cat --frames 2 --denoised",
+                                 "--scene cat --frames 2 --denoiser fast", &denoised, &summary,
+                                 "--out-denoised");
+  if (HasFatalFailure()) return;
+  expect_window_matches_headless("raw", "--scene cat --frames 2", "--scene cat --frames 2", &raw);
+  if (HasFatalFailure()) return;
+  const Rect r = render_rect(summary);
+  long differ = 0;
+  for (int y = 0; y < r.h; ++y)
+    for (int x = 0; x < r.w; ++x)
+      for (int c = 0; c < 3; ++c)
+        differ += std::abs(int(denoised.at(r.x + x, r.y + y)[c]) - int(raw.at(r.x + x, r.y + y)[c])) > 8;
+  EXPECT_GT(differ, long(r.w) * r.h / 20) << "the denoised window looks like the raw one";
 }
 
 // The default scene (the cat, indirect + AA) after two passes.

@@ -33,6 +33,7 @@ struct CommandLine {
   std::string out_png, out_float, stats_json, screenshot;
   std::string out_denoised;          // headless: the denoised image (.png, .pfm or .exr)
   std::string denoiser = "quality";  // its filter: "fast" or "quality"
+  bool denoised_view = false;        // the viewer starts showing the denoised image
   int edit_after = -1;
   std::string edit_light;
   std::string edit_orbit;   // "dx,dy" radians, as a left drag

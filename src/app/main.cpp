@@ -86,6 +86,7 @@ int viewer(const CommandLine& cl, const Scene& scene) {
   v.threads = cl.threads;
   v.frames = cl.frames;
   v.screenshot_path = cl.screenshot;
+  v.denoised = cl.denoised_view;
   v.event_log = cl.edit_log;
   const bool any_edit = !cl.edit_light.empty() || !cl.edit_orbit.empty() || !cl.edit_toggle.empty();
   if (cl.edit_after >= 0 || any_edit) {

@@ -328,7 +328,7 @@ void ProgressiveRenderer::plan_pass() {
   Job& job = *job_;
   // Quick passes first, then the generation's own.
   job.quick_pass = job.quick.next_is_quick(job.spp_done);
-  if (job.quick_pass) job.quick.set_up(dragging_);
+  if (job.quick_pass) job.quick.set_up(dragging_, features_);
   if (!job.quick_pass && job.film_stale) {
     job.film.reset(job.width, job.height, features_);
     job.film_stale = false;

@@ -54,7 +54,7 @@ bool QuickPasses::next_is_quick(std::uint64_t own_spp) {
   return active_;
 }
 
-void QuickPasses::set_up(bool dragging) {
+void QuickPasses::set_up(bool dragging, bool features) {
   const Camera& c = scene_.camera;
   const int stride = dragging ? drag_stride(full_pass_seconds_, c.width, c.height) : 1;
   if (stride == stride_) return;
@@ -67,7 +67,7 @@ void QuickPasses::set_up(bool dragging) {
     coarse.height /= stride;
     cam_ = std::make_unique<CameraFrame>(coarse);
   }
-  film_.reset(c.width / stride, c.height / stride);
+  film_.reset(c.width / stride, c.height / stride, features && stride == 1);
 }
 
 void QuickPasses::publish(double seconds, std::uint64_t generation, Snapshot& q) {

@@ -39,9 +39,10 @@ class QuickPasses {
   // or the generation's own first pass (own_spp > 0).
   bool next_is_quick(std::uint64_t own_spp);
   // Before a quick pass: the film at the stride a drag asks for (1 when
-  // not dragging). A change of stride starts the quick passes over, as a
-  // film holds one resolution.
-  void set_up(bool dragging);
+  // not dragging), with feature buffers if `features` (at full size only:
+  // the denoiser takes no coarse pass). A change of stride starts the quick
+  // passes over, as a film holds one resolution.
+  void set_up(bool dragging, bool features);
 
   const Scene& scene() const { return scene_; }
   Film& film() { return film_; }

@@ -196,10 +196,12 @@ Snapshot shown_means(const ViewerState& s) {
   return out;
 }
 
-// The live image: what the window shows (viewer/blend.h) once that holds
-// the generation's own passes, else the own passes alone.
+// The live image: what the window shows (viewer/blend.h, or its denoised
+// copy) once that holds the generation's own passes, else the own passes
+// alone.
 static const Snapshot& live_image(const ViewerState& s) {
-  return s.shown.image.spp > 0 && s.shown.own_spp > 0 ? s.shown.image : s.snap;
+  if (s.shown.image.spp > 0 && s.shown.own_spp > 0) return showing_denoised(s) ? s.denoised : s.shown.image;
+  return s.snap;
 }
 
 void Controller::save() {
@@ -213,8 +215,11 @@ void Controller::save() {
   try {
     const std::string dir = s.save_dir.empty() ? "." : s.save_dir;
     fs::create_directories(dir);
+    // The denoised image is a separate output, and its name says so.
+    const bool denoised = showing_denoised(s) && s.display.mode == kViewImage;
     const std::string wanted =
-        s.save_name.empty() ? s.scene_label + "-" + std::to_string(own.spp) + "spp" : s.save_name;
+        (s.save_name.empty() ? s.scene_label + "-" + std::to_string(own.spp) + "spp" : s.save_name) +
+        (denoised ? "-denoised" : "");
     const std::string float_ext = have_exr() ? ".exr" : ".pfm";
     // Never overwrite: the first free name, and the panel says which.
     const std::string stem = free_stem(dir, wanted, {".png", float_ext});
@@ -232,8 +237,11 @@ void Controller::save() {
     // while the window shows them, viewer/blend.h).
     const Image img = mean_image(live_image(s));
     const bool display_units = s.save_display_units;
-    write_float_image(base + float_ext, display_units ? display_referred(img) : img,
-                      render_record(s.applied, own, display_units));
+    ImageAttributes record = render_record(s.applied, own, display_units);
+    if (denoised)
+      record.emplace_back("whisker.image", "denoised (fast filter) from " + std::to_string(s.denoised.spp) +
+                                               " spp, not the raw estimate");
+    write_float_image(base + float_ext, display_units ? display_referred(img) : img, record);
     const char* units = display_units ? " (display units: 1.0 = white)" : " (radiance)";
     const bool wipe = !debug && s.held.spp > 0 && s.compare == kCompareWipe;
     const char* as_shown = wipe ? " (as shown: held left, live right)" : " (as shown)";
@@ -303,6 +311,7 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     s.paused = !s.paused;
     renderer.set_paused(s.paused);
   }
+  if (req.toggle_denoised) s.denoised_view = !s.denoised_view;
   if (req.save) save();
   if (req.hold) hold();
   if (req.print_camera) {

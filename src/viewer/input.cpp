@@ -21,6 +21,7 @@ void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, bool popup_open
   if (keys.r) req.restart = true;
   if (keys.s) req.save = true;
   if (keys.c) req.print_camera = true;
+  if (keys.d) req.toggle_denoised = true;
   if (keys.escape && !popup_open) req.quit = true;
   if (keys.undo) req.undo = true;
   if (keys.redo) req.redo = true;
@@ -67,6 +68,7 @@ KeyPresses keys_of(const std::vector<KeyPress>& presses) {
     if (p.key == GLFW_KEY_R) k.r = true;
     if (p.key == GLFW_KEY_S) k.s = true;
     if (p.key == GLFW_KEY_C) k.c = true;
+    if (p.key == GLFW_KEY_D) k.d = true;
     if (p.key == GLFW_KEY_ESCAPE) k.escape = true;
   }
   return k;

@@ -17,6 +17,7 @@ struct KeyPresses {
   bool r = false;       // restart
   bool s = false;       // save
   bool c = false;       // print the camera as JSON
+  bool d = false;       // raw or denoised image
   bool escape = false;  // close the open popup, else quit
   bool undo = false;    // Ctrl+Z
   bool redo = false;    // Ctrl+Y or Ctrl+Shift+Z

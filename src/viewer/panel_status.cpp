@@ -172,6 +172,39 @@ void error_plot(const ViewerState& s) {
 
 }  // namespace
 
+// The denoised image's estimated error beside the raw image's (render/
+// denoise.h estimate_error, bias included), per pixel and in 8 px blocks,
+// as a root mean square in % of the mean; one line.
+void denoised_line(const ViewerState& s, bool stale) {
+  const DenoisedFigures& f = s.denoised_figures;
+  if (!stale && s.snap.spp > 0 && deterministic_estimate(s.applied)) {
+    ImGui::Text("denoised: nothing to do, the image is exact");
+  } else if (!showing_denoised(s)) {
+    ImGui::Text("denoised: - (needs 2 spp)");
+  } else if (!f.valid) {
+    ImGui::Text("denoised from %llu spp; no error estimate (Sobol halves)",
+                (unsigned long long)s.denoised.spp);
+  } else {
+    const auto pct = [](double mse, double mean) { return mean > 0 ? 100.0 * std::sqrt(mse) / mean : 0.0; };
+    const ScaleError& p = f.pixel;
+    const ScaleError& b = f.block;
+    const bool better = p.denoised_better() && (b.scale < 8 || b.denoised_better());
+    ImGui::Text("denoised %.2g %% (raw %.2g), 8 px %.2g (%.2g): %s",
+                pct(p.denoised_mse, p.mean), pct(p.raw_mse, p.mean), pct(b.denoised_mse, b.mean),
+                pct(b.raw_mse, b.mean), better ? "better" : "worse");
+  }
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "The denoised image's estimated error, bias included, against the raw image's: "
+                "root mean square per pixel and over 8 x 8 pixel blocks, in %% of the mean, from "
+                "the render's two independent half images (each filtered half compared with the "
+                "other). The default Sobol sampler's halves are not independent: --sampler "
+                "independent gives the figures after the first moments. The filter took %.0f ms; "
+                "the window's redraw %.1f ms.",
+                f.seconds * 1e3, double(s.frame_ms_avg));
+  tip(text);
+}
+
 std::uint64_t status_section(const ViewerState& s, double now) {
   const Snapshot& sn = s.snap;
   // "Before the edit": the numbers are an earlier generation's (none at the start).
@@ -195,6 +228,12 @@ std::uint64_t status_section(const ViewerState& s, double now) {
               (unsigned long long)sn.counters.nan_count, triangle_count(s.applied), now - s.last_change);
   tip("Samples that came out not-a-number or infinite are dropped and counted here. "
       "'since edit': time since the last change that restarted the render.");
+  // One line for the two, so the panel below never moves: with the denoised
+  // view on, its error takes the window's redraw time's place.
+  if (s.denoised_view) {
+    denoised_line(s, stale);
+    return bar_spp;
+  }
   if (s.frame_ms_avg > 0.0f)
     ImGui::Text("window redraw %.1f ms", s.frame_ms_avg);
   else
@@ -225,6 +264,12 @@ void controls(const ViewerState& s, PanelRequests& req) {
   if (ImGui::Button("Redo (Ctrl+Y)")) req.redo = true;
   ImGui::EndDisabled();
   tip("Do again what Undo took back.");
+  ImGui::SameLine();
+  bool denoised = s.denoised_view;
+  if (ImGui::Checkbox("Denoised (D)", &denoised)) req.toggle_denoised = true;
+  tip("Show a denoised copy of the image (edge-avoiding a-trous wavelets guided by the "
+      "albedo, normal and depth of the first hit) instead of the raw render. The raw "
+      "render goes on unchanged; Save writes the image shown, named -denoised.");
   // Two lines, always there, wrapped: a message never moves what is below.
   const float h = ImGui::GetTextLineHeightWithSpacing() * 2.0f + 4.0f;
   ImGui::BeginChild("##message", ImVec2(0, h), false, ImGuiWindowFlags_NoScrollbar);

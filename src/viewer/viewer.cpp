@@ -90,6 +90,9 @@ struct Session {
   glm::dvec3 room_checked_light{std::nan("")};
   int drawn = 0;
   static constexpr int kWarmupFrames = 5;
+  // The denoised image (the Denoised box): filtered on a thread of its own.
+  DenoisedView denoiser{[] { glfwPostEmptyEvent(); }};
+  std::uint64_t denoise_asked = ~0ull;  // what was last handed to it
 
   // Wakes on input or ~60 times a second to look for a new pass; never
   // waits for one. The workers own the cores, so no busy loop either.
@@ -123,14 +126,42 @@ struct Session {
     return true;
   }
 
-  // The image on the GPU: what is shown, or in the noise view the own
-  // passes (their sums of squares belong to their sums).
+  // The image on the GPU: what is shown (raw or denoised), or in the noise
+  // view the own passes (their sums of squares belong to their sums).
   void upload_image() {
     if (s.display.mode == kViewNoise)
       display.upload(s.snap, true);
     else
-      display.upload(s.shown.image, false);
+      display.upload(showing_denoised(s) ? s.denoised : s.shown.image, false);
     uploaded_mode = s.display.mode == kViewNoise;
+    uploaded_denoised = showing_denoised(s);
+  }
+  bool uploaded_denoised = false;
+
+  // With the denoised view on: the newest image of the current generation
+  // that has feature buffers and two samples (its own passes, else the quick
+  // passes at full size) goes to the filter, once each. An exact image has
+  // nothing to denoise.
+  void ask_denoiser() {
+    if (!s.denoised_view || deterministic_estimate(s.applied)) return;
+    const auto usable = [&](const Snapshot& sn) {
+      return sn.generation == s.generation && sn.spp >= 2 && sn.stride == 1 && !sn.features.empty();
+    };
+    const Snapshot* src = usable(s.snap) ? &s.snap : usable(s.quick) ? &s.quick : nullptr;
+    if (!src) return;
+    const std::uint64_t key = src->version * 2 + (src == &s.quick ? 1 : 0);
+    if (key == denoise_asked) return;
+    denoise_asked = key;
+    // The quick passes' numbers are independent; Sobol halves are not.
+    denoiser.request(*src, src == &s.quick || s.applied.settings.sampler == SamplerKind::Independent);
+  }
+
+  // A scripted run with the denoised view ends on the denoised image of its
+  // last pass.
+  bool denoised_caught_up() const {
+    return !s.denoised_view || deterministic_estimate(s.applied) ||
+           (s.denoised.spp > 0 && !s.denoised_figures.from_quick &&
+            s.denoised_figures.source_version == s.snap.version);
   }
   bool uploaded_mode = false;
 
@@ -266,7 +297,9 @@ struct Session {
     } else if (held && s.compare == kCompareHeld) {
       held_display.draw(rect, f.fb_h, float(s.held.spp), s.display);
     } else {
-      const Snapshot& live = s.display.mode == kViewNoise ? s.snap : s.shown.image;
+      const Snapshot& live = s.display.mode == kViewNoise ? s.snap
+                             : showing_denoised(s)           ? s.denoised
+                                                             : s.shown.image;
       display.draw(rect, f.fb_h, float(live.spp), s.display);
       if (held && s.compare == kCompareWipe)
         held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
@@ -311,7 +344,12 @@ struct Session {
     int exit_code = 0;
     while (!should_close()) {
       const double t0 = wait_for_events();
-      const bool fresh = take_snapshot();
+      bool fresh = take_snapshot();
+      ask_denoiser();
+      if (denoiser.latest(s.denoised, s.denoised_figures) || showing_denoised(s) != uploaded_denoised) {
+        upload_image();
+        fresh = true;
+      }
       // Draw only when the screen can change: a new pass, input (and a few
       // frames after it for ImGui to settle), or the panel's clock.
       if (!fresh && !redraw_pending() && t0 - last_frame < 0.5) continue;
@@ -323,8 +361,8 @@ struct Session {
       const PixelRect rect = panel_and_input(f, t0);
       // Without --screenshot the window stays open after --frames passes
       // (the target stops the render there).
-      const bool finish =
-          (!opt.screenshot_path.empty() || !opt.event_log.empty()) && script.finished(s);
+      const bool finish = (!opt.screenshot_path.empty() || !opt.event_log.empty()) &&
+                          script.finished(s) && denoised_caught_up();
       update_title();
       render(f, rect);
 
@@ -425,6 +463,9 @@ int run_viewer(const ViewerOptions& opt) {
   // its --frames passes, as the headless mode with --frames does.
   renderer.set_stop_when_exact(opt.frames <= 0);
   renderer.set_low_priority(true);  // the UI thread shares the two cores
+  // The denoised view's feature buffers, from the first generation on.
+  renderer.set_features(true);
+  s.denoised_view = opt.denoised;
   // A published pass wakes the event loop at once, not at its next check.
   renderer.set_on_publish([] { glfwPostEmptyEvent(); });
   s.generation = renderer.set_scene(s.applied);

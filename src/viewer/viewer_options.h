@@ -29,6 +29,7 @@ struct ViewerOptions {
   int threads = 0;               // 0 = all hardware threads
   int frames = 0;                // > 0: exit after this many passes of the final generation
   std::string screenshot_path;   // with frames: save the window framebuffer here
+  bool denoised = false;         // start showing the denoised image (--denoised)
   std::vector<ScriptedEdit> edits;
   int width = 0, height = 0;     // window size (0 = fit the image plus panel)
   // A line per edit and per drawn frame (times, generations, samples) goes

@@ -11,6 +11,7 @@
 #include "scene/scene.h"
 #include "viewer/blend.h"
 #include "viewer/debug_views.h"
+#include "viewer/denoised_view.h"
 #include "viewer/display.h"
 #include "viewer/history.h"
 
@@ -27,6 +28,7 @@ struct PanelRequests {
   bool reset_camera = false;
   bool reset_light = false;
   bool print_camera = false;
+  bool toggle_denoised = false;  // raw or denoised image (D)
   bool quit = false;
   std::string load_scene;  // name or path
   std::string load_mesh;   // an OBJ for the current scene's meshes
@@ -97,6 +99,12 @@ struct ViewerState {
   // The same for the light (a light out there leaves the room black).
   std::string light_outside;
 
+  // The denoised view (the Denoised box, key D; viewer/denoised_view.h):
+  // a separate image beside the raw film, shown while `denoised_view` is on.
+  bool denoised_view = false;
+  Snapshot denoised;  // the latest denoised image (sum / spp its mean)
+  DenoisedFigures denoised_figures;
+
   Snapshot held;          // the image held for comparison (spp 0: none)
   std::string held_note;  // what it showed, e.g. "Fresnel on, 64 spp"
   int compare = kCompareOff;
@@ -118,6 +126,14 @@ void draw_panel(ViewerState& state, float window_w, float window_h, float panel_
 // first of them lands; never the quick passes, never a pass in flight, which
 // moves the bar's fill only).
 std::uint64_t shown_spp(const ViewerState& state);
+
+// Whether the window shows the denoised image: asked for, in the image
+// view, and one of the generation shown is in.
+inline bool showing_denoised(const ViewerState& s) {
+  return s.denoised_view && s.display.mode == kViewImage && s.denoised.spp > 0 &&
+         s.denoised.generation == s.shown.image.generation && s.denoised.width == s.shown.image.width &&
+         s.denoised.height == s.shown.image.height;
+}
 
 // The report's display mapping as an exposure: L / 255^2.2.
 float report_exposure();

@@ -8,10 +8,11 @@ using namespace whisker;
 
 TEST(InputMapping, ShortcutKeysGiveTheirRequests) {
   KeyPresses keys;
-  keys.space = keys.r = keys.s = keys.c = keys.escape = true;
+  keys.space = keys.r = keys.s = keys.c = keys.d = keys.escape = true;
   PanelRequests req;
   map_keys(keys, false, false, req);
   EXPECT_TRUE(req.toggle_pause);
+  EXPECT_TRUE(req.toggle_denoised);
   EXPECT_TRUE(req.restart);
   EXPECT_TRUE(req.save);
   EXPECT_TRUE(req.print_camera);
@@ -22,15 +23,17 @@ TEST(InputMapping, ShortcutKeysGiveTheirRequests) {
   r.r = true;
   map_keys(r, false, false, only_r);
   EXPECT_TRUE(only_r.restart);
-  EXPECT_FALSE(only_r.toggle_pause || only_r.save || only_r.print_camera || only_r.quit);
+  EXPECT_FALSE(only_r.toggle_pause || only_r.save || only_r.print_camera || only_r.quit ||
+               only_r.toggle_denoised);
 }
 
 TEST(InputMapping, KeysAreIgnoredWhileImGuiTakesText) {
   KeyPresses keys;
-  keys.space = keys.r = keys.s = keys.c = keys.escape = true;
+  keys.space = keys.r = keys.s = keys.c = keys.d = keys.escape = true;
   PanelRequests req;
   map_keys(keys, true, false, req);  // e.g. typing "s" into the path field
-  EXPECT_FALSE(req.toggle_pause || req.restart || req.save || req.print_camera || req.quit);
+  EXPECT_FALSE(req.toggle_pause || req.restart || req.save || req.print_camera || req.quit ||
+               req.toggle_denoised);
   // A request the panel already made is kept.
   req.save = true;
   map_keys(keys, true, false, req);
