@@ -179,9 +179,7 @@ void add_app_options(CLI::App& app, CommandLine& o) {
       ->capture_default_str()
       ->check(one_of("--denoiser", {"quality", "fast"}))
       ->type_name("quality|fast");
-  app.add_flag("--denoised", o.denoised_view,
-               "Viewer: show the denoised image (fast filter) from the start; the panel's "
-               "Denoised box and the D key switch it");
+  app.add_flag("--denoised", o.denoised_view, "Viewer: show the denoised image (fast filter); key D switches");
   app.add_option("--screenshot", o.screenshot,
                  "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
@@ -272,8 +270,7 @@ const Pairing kPairings[] = {
     {"--out-denoised", "--resume", false, [](const CLI::App&) { return no_parts("--resume"); }},
     {"--out-denoised", "--out-sum", false, [](const CLI::App&) { return no_parts("--out-sum"); }},
     {"--screenshot", "--headless", false, [](const CLI::App&) { return needs_viewer("--screenshot"); }},
-    {"--denoised", "--headless", false,
-     [](const CLI::App&) { return needs_viewer("--denoised") + "; headless, --out-denoised FILE writes one"; }},
+    {"--denoised", "--headless", false, [](const CLI::App&) { return needs_viewer("--denoised"); }},
     {"--edit-after", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-after"); }},
     {"--edit-light", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-light"); }},
     {"--edit-orbit", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-orbit"); }},

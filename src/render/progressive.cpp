@@ -338,8 +338,7 @@ void ProgressiveRenderer::plan_pass() {
   job.pass_tiles_y = (job.pass_cam->height + kTile - 1) / kTile;
   const RenderSettings& s = job.scene.settings;
   int spp = job.quick_pass ? 1 : std::max(1, s.spp);
-  if (growing_ && !job.quick_pass)
-    spp = int(std::min<std::uint64_t>(std::uint64_t(spp), std::max<std::uint64_t>(1, job.spp_done)));
+  if (growing_ && !job.quick_pass) spp = int(std::min<std::uint64_t>(spp, std::max<std::uint64_t>(1, job.spp_done)));
   if (s.target_spp > 0 && !job.quick_pass)
     spp = int(std::min<std::uint64_t>(spp, std::uint64_t(s.target_spp) - job.spp_done));
   // At most kCachedSamples light caches at a time: bounded whatever --spp.
@@ -369,7 +368,6 @@ const std::atomic<bool>& ProgressiveRenderer::cancel_flag() const {
   // A quick pass runs to its end (a drag shows each one), but a stop ends it.
   return job_->quick_pass ? quit_ : cancel_;
 }
-
 
 void ProgressiveRenderer::build_light_caches(int chunk) {
   Job& job = *job_;

@@ -320,4 +320,27 @@ void Controller::carry_out(const PanelRequests& req, double now) {
   }
 }
 
+// A path as the panel shows it: relative to the working folder when it lies
+// inside it ("assets/scenes/cat.json"), else as given.
+static std::string shown_path(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::path rel = std::filesystem::proximate(path, ec);
+  if (ec || rel.empty() || *rel.begin() == "..") return path;
+  return rel.string();
+}
+
+void init_state(ViewerState& s, const Scene& scene, const std::string& path) {
+  s.initial = s.applied = s.edited = scene;
+  s.scene_label = scene_label_of(scene, path);
+  s.path_field = shown_path(path);
+  s.scene_path = path;
+  try {
+    s.scene_names = list_scenes();
+  } catch (const std::exception& e) {
+    s.message = e.what();
+    s.message_is_error = true;
+  }
+}
+
+
 }  // namespace whisker

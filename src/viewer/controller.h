@@ -19,6 +19,9 @@ std::string scene_label_of(const Scene& scene, const std::string& path);
 // replaces the current scene's meshes; anything else is refused with a message.
 void request_for_drop(const std::string& path, PanelRequests& req, std::string& error);
 
+// The panel's state for the scene given on the command line, read from `path`.
+void init_state(ViewerState& s, const Scene& scene, const std::string& path);
+
 // True if the edit only raises the target samples per pixel (or lifts it to
 // 0 = never stop): the render goes on instead of restarting.
 bool only_target_raised(const Scene& applied, const Scene& edited);

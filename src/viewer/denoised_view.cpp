@@ -4,6 +4,8 @@
 #include <utility>
 
 #include "render/film_denoise.h"
+#include "scene/scene.h"
+#include "viewer/viewer_state.h"
 
 namespace whisker {
 
@@ -87,6 +89,25 @@ void DenoisedView::run() {
     if (on_done_) on_done_();
     lock.lock();
   }
+}
+
+
+const Snapshot* denoise_source(const ViewerState& s) {
+  if (!s.denoised_view || deterministic_estimate(s.applied)) return nullptr;
+  const auto usable = [&](const Snapshot& sn) {
+    return sn.generation == s.generation && sn.spp >= 2 && sn.stride == 1 && !sn.features.empty();
+  };
+  return usable(s.snap) ? &s.snap : usable(s.quick) ? &s.quick : nullptr;
+}
+
+std::uint64_t denoise_key(const ViewerState& s, const Snapshot& source) {
+  return source.version * 2 + (&source == &s.quick ? 1 : 0);  // the two films count apart
+}
+
+bool denoised_caught_up(const ViewerState& s) {
+  return !s.denoised_view || deterministic_estimate(s.applied) ||
+         (s.denoised.spp > 0 && !s.denoised_figures.from_quick &&
+          s.denoised_figures.source_version == s.snap.version);
 }
 
 }  // namespace whisker

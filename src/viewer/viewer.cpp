@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
-#include <filesystem>
 #include <memory>
 #include <numeric>
 #include <string>
@@ -40,27 +39,8 @@ namespace whisker {
 
 namespace {
 
-namespace fs = std::filesystem;
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
-
-// The window's size this frame: framebuffer pixels and window units.
-struct FrameSize {
-  int fb_w = 0, fb_h = 0;
-  float win_w = 0.0f, win_h = 0.0f;
-  float fb_per_win = 1.0f;  // framebuffer pixels per window unit
-};
-
-FrameSize frame_size(GLFWwindow* window) {
-  FrameSize f;
-  glfwGetFramebufferSize(window, &f.fb_w, &f.fb_h);
-  int ww = 0, wh = 0;
-  glfwGetWindowSize(window, &ww, &wh);
-  f.win_w = float(ww);
-  f.win_h = float(wh);
-  f.fb_per_win = ww > 0 ? float(f.fb_w) / ww : 1.0f;
-  return f;
-}
 
 // The state of the open window between frames, and the steps of one frame.
 struct Session {
@@ -136,34 +116,15 @@ struct Session {
     uploaded_mode = s.display.mode == kViewNoise;
     uploaded_denoised = showing_denoised(s);
   }
-  bool uploaded_denoised = false;
+  bool uploaded_mode = false, uploaded_denoised = false;
 
-  // With the denoised view on: the newest image of the current generation
-  // that has feature buffers and two samples (its own passes, else the quick
-  // passes at full size) goes to the filter, once each. An exact image has
-  // nothing to denoise.
+  // The quick passes' numbers are independent; Sobol halves are not.
   void ask_denoiser() {
-    if (!s.denoised_view || deterministic_estimate(s.applied)) return;
-    const auto usable = [&](const Snapshot& sn) {
-      return sn.generation == s.generation && sn.spp >= 2 && sn.stride == 1 && !sn.features.empty();
-    };
-    const Snapshot* src = usable(s.snap) ? &s.snap : usable(s.quick) ? &s.quick : nullptr;
-    if (!src) return;
-    const std::uint64_t key = src->version * 2 + (src == &s.quick ? 1 : 0);
-    if (key == denoise_asked) return;
-    denoise_asked = key;
-    // The quick passes' numbers are independent; Sobol halves are not.
-    denoiser.request(*src, src == &s.quick || s.applied.settings.sampler == SamplerKind::Independent);
+    if (const Snapshot* src = denoise_source(s); src && denoise_key(s, *src) != denoise_asked) {
+      denoise_asked = denoise_key(s, *src);
+      denoiser.request(*src, src->quick || s.applied.settings.sampler == SamplerKind::Independent);
+    }
   }
-
-  // A scripted run with the denoised view ends on the denoised image of its
-  // last pass.
-  bool denoised_caught_up() const {
-    return !s.denoised_view || deterministic_estimate(s.applied) ||
-           (s.denoised.spp > 0 && !s.denoised_figures.from_quick &&
-            s.denoised_figures.source_version == s.snap.version);
-  }
-  bool uploaded_mode = false;
 
   // Draws the panel, reads the keys and the mouse, and carries out what they
   // ask. Returns where the image goes.
@@ -362,7 +323,7 @@ struct Session {
       // Without --screenshot the window stays open after --frames passes
       // (the target stops the render there).
       const bool finish = (!opt.screenshot_path.empty() || !opt.event_log.empty()) &&
-                          script.finished(s) && denoised_caught_up();
+                          script.finished(s) && denoised_caught_up(s);
       update_title();
       render(f, rect);
 
@@ -390,29 +351,6 @@ struct Session {
                  FrameStats::pct(fstats.total_ms, 0.95));
   }
 };
-
-// A path as the panel shows it: relative to the working folder when it lies
-// inside it ("assets/scenes/cat.json"), else as given.
-std::string shown_path(const std::string& path) {
-  std::error_code ec;
-  const fs::path rel = fs::proximate(path, ec);
-  if (ec || rel.empty() || *rel.begin() == "..") return path;
-  return rel.string();
-}
-
-// The panel's state for the scene given on the command line.
-void init_state(ViewerState& s, const ViewerOptions& opt) {
-  s.initial = s.applied = s.edited = opt.scene;
-  s.scene_label = scene_label_of(opt.scene, opt.scene_path);
-  s.path_field = shown_path(opt.scene_path);
-  s.scene_path = opt.scene_path;
-  try {
-    s.scene_names = list_scenes();
-  } catch (const std::exception& e) {
-    s.message = e.what();
-    s.message_is_error = true;
-  }
-}
 
 }  // namespace
 
@@ -448,7 +386,7 @@ int run_viewer(const ViewerOptions& opt) {
   if (!opt.screenshot_path.empty()) ImGui::GetIO().ConfigFlags |= ImGuiConfigFlags_NoMouse;
 
   ViewerState s;
-  init_state(s, opt);
+  init_state(s, opt.scene, opt.scene_path);
   ScriptedRun(opt).prepare(s);
 
   ProgressiveRenderer renderer(opt.threads);

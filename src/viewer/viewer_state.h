@@ -135,6 +135,16 @@ inline bool showing_denoised(const ViewerState& s) {
          s.denoised.height == s.shown.image.height;
 }
 
+// With the denoised view on: the newest image of the current generation
+// with feature buffers and two samples (its own passes, else the quick
+// passes at full size), for the filter; null if none (an exact image has
+// nothing to denoise). denoise_key names it, to hand each over once.
+const Snapshot* denoise_source(const ViewerState& s);
+std::uint64_t denoise_key(const ViewerState& s, const Snapshot& source);
+// A scripted run with the denoised view ends on the denoised image of its
+// last pass: whether that is in (always true with the view off).
+bool denoised_caught_up(const ViewerState& s);
+
 // The report's display mapping as an exposure: L / 255^2.2.
 float report_exposure();
 

@@ -206,4 +206,16 @@ ImGuiSession::~ImGuiSession() {
   ImGui::DestroyContext();
 }
 
+FrameSize frame_size(GLFWwindow* window) {
+  FrameSize f;
+  glfwGetFramebufferSize(window, &f.fb_w, &f.fb_h);
+  int ww = 0, wh = 0;
+  glfwGetWindowSize(window, &ww, &wh);
+  f.win_w = float(ww);
+  f.win_h = float(wh);
+  f.fb_per_win = ww > 0 ? float(f.fb_w) / ww : 1.0f;
+  return f;
+}
+
+
 }  // namespace whisker

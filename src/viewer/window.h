@@ -10,6 +10,15 @@ struct GLFWwindow;
 
 namespace whisker {
 
+// The window's size this frame: framebuffer pixels and window units.
+struct FrameSize {
+  int fb_w = 0, fb_h = 0;
+  float win_w = 0.0f, win_h = 0.0f;
+  float fb_per_win = 1.0f;  // framebuffer pixels per window unit
+};
+
+FrameSize frame_size(GLFWwindow* window);
+
 // glfwInit (with an error callback that keeps the last message) and
 // glfwTerminate.
 class GlfwSession {
