@@ -23,8 +23,8 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string check_outs(const MergeCommandLine& o) {
-  if (o.outs.empty() && o.stats_json.empty())
-    return "merge needs at least one --out (.exr, .pfm or .png) or --stats";
+  if (o.outs.empty() && o.stats_json.empty() && o.out_denoised.empty())
+    return "merge needs at least one --out (.exr, .pfm or .png), --out-denoised or --stats";
   // No output may replace a part or another output (--stats too).
   std::vector<std::string> all;
   for (const std::string& out : o.outs) all.push_back("--out " + out);

@@ -223,10 +223,10 @@ PartFile::PartFile(const std::string& path) : path_(path) {
   // writes is named as such (the header checksum would refuse it too).
   parse(values);
   parse_features(h);
+  check_channels();
   if (const std::uint32_t crc = header_crc(values, features_, dw_); crc != header)
     throw AccumulationError(path + ": damaged: its header does not match its checksum (crc32 " +
                             crc_text(crc) + ", whisker.checksum says " + crc_text(header) + ")");
-  check_channels();
   // A file cut short (a copy that did not finish, a full disk): its line
   // offsets point past its end. Told by the header pass too, before a
   // merge checks ranges.
