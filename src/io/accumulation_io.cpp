@@ -175,8 +175,9 @@ double seconds_attribute(const std::string& v, const std::string& path) {
   return d;
 }
 
-// A part open for reading, its header checked: Whisker's attributes against
-// the header checksum, then each field, the size and the word channels.
+// A part open for reading, its header checked: each of Whisker's fields,
+// the size, the feature layers' samples and the word channels, then the
+// attributes against the header checksum.
 class PartFile {
  public:
   explicit PartFile(const std::string& path);

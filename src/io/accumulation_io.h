@@ -1,7 +1,8 @@
 // Accumulation files: OpenEXR images whose R, G, B channels are the mean
 // radiance (any EXR viewer shows them) and whose other channels carry the
-// exact double sums, with the sample ranges, the render's identity and a
-// checksum of both as header attributes (docs/SHARDS.md, "File format").
+// exact double sums (and, when the render kept them, the denoiser's feature
+// sums: io/part_layers.h), with the sample ranges, the render's identity and
+// a checksum of both as header attributes (docs/SHARDS.md, "File format").
 #pragma once
 
 #include <functional>

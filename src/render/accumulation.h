@@ -79,8 +79,9 @@ struct AccumulationError : std::runtime_error {
 // The accumulation of a snapshot whose samples start at `first_sample`.
 Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
                              const RenderIdentity& id);
-// A snapshot of an accumulation, so mean_image and the stats see it as they
-// see a render. The second takes the sums over instead of copying them.
+// A snapshot of an accumulation, so mean_image, the stats and the denoiser
+// see it as they see a render (its feature sums, and its first sample,
+// which says which samples are odd). The second takes the sums over instead of copying them.
 Snapshot snapshot_of(const Accumulation& acc);
 Snapshot snapshot_of(Accumulation&& acc);
 
