@@ -311,6 +311,11 @@ TEST_F(Shards, AResumeKeepsFeaturesOnlyWhenItRendersNothingMore) {
          " --out-sum " + f("again.exr"));
   EXPECT_EQ(file_bytes(f("whole.pfm")), file_bytes(f("again.pfm")));
   EXPECT_TRUE(read_accumulation(f("again.exr")).with_features);
+  // The checkpoints of a render that keeps features keep them too.
+  render("--spp 1 --samples 0:4 --features --checkpoint 0 --out-sum " + f("ck.exr"));
+  const Accumulation ck = read_accumulation(f("ck.exr")), part = read_accumulation(f("part.exr"));
+  EXPECT_TRUE(ck.with_features);
+  EXPECT_EQ(ck.features.size(), part.features.size());
   const Result r = run("--headless --quiet --scene " + scene.string() + " --spp 2 --samples 0:8 --resume " +
                        f("part.exr") + " --features --out-sum " + f("more.exr"));
   EXPECT_EQ(r.code, 2) << r.output;
