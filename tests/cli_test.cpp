@@ -171,6 +171,12 @@ TEST_F(CommandLineE2E, OptionErrorsAreOneLineNamingTheOption) {
       {"merge", "merge: no parts given"},
       {"merge " + f("a.exr") + " --bogus", "unknown option --bogus (see --help)"},
       {"merge " + f("a.exr") + " --out", "--out: needs a value"},
+      {"--features" + small + out, "--features needs --headless"},
+      {"merge " + f("a.exr") + " --out-denoised " + f("d.jpg"), "merge --out-denoised " + f("d.jpg") +
+                                                                  ": must end in .png, .pfm or .exr"},
+      {"merge " + f("a.exr") + " --out-denoised " + f("a.exr"), "--out-denoised " + f("a.exr") +
+                                                                  ": is one of the parts"},
+      {"merge " + f("a.exr") + " --out-denoised ''", "merge --out-denoised: needs a value, got \"\""},
   };
   for (const Case& c : cases) {
     const Outcome r = run(c.args);

@@ -4,6 +4,8 @@
 // share their errors, nor overflow or underflow at extreme intensities),
 // and pixel sums that drop non-finite samples.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -160,6 +162,48 @@ TEST(Film, RelativeStandardErrorIsFiniteAndScaleInvariant) {
     EXPECT_TRUE(std::isfinite(e)) << k;
     EXPECT_NEAR(e, e1, 1e-5 * e1) << k;
   }
+}
+
+// A pass of 3 samples (indices first..first+2) at each of 2 pixels, with
+// features varied by pixel and sample.
+PixelSum feature_pass(std::uint32_t pixel, std::uint64_t first) {
+  PixelSum p;
+  for (std::uint64_t i = first; i < first + 3; ++i) {
+    const float t = 0.1f * float(i) + 0.37f * float(pixel);
+    p.add(vec3(t, 2.0f * t, 0.5f + t), i);
+    p.add_features(vec3(0.3f + t, 0.2f, 0.1f * t), vec3(-t, 0.5f, t - 1.0f), 10.0f + t, i);
+  }
+  return p;
+}
+
+// A resumed film: loaded with a part's feature sums, it goes on to the
+// feature sums of the film that never stopped, bit for bit; loaded without
+// them it publishes none.
+TEST(Film, LoadedFeatureSumsGoOnExactly) {
+  Film whole, resumed, plain;
+  whole.reset(2, 1, true);
+  for (std::uint32_t px = 0; px < 2; ++px) whole.add(px, feature_pass(px, 0));
+  Snapshot part;
+  whole.publish(part);
+  ASSERT_EQ(part.features.size(), 2u * kFeatureSums);
+  for (std::uint32_t px = 0; px < 2; ++px) whole.add(px, feature_pass(px, 3));
+  resumed.reset(2, 1, true);
+  resumed.load(part.sum, part.sum_sq, part.odd_rgb, part.features);
+  for (std::uint32_t px = 0; px < 2; ++px) resumed.add(px, feature_pass(px, 3));
+  Snapshot a, b;
+  whole.publish(a);
+  resumed.publish(b);
+  ASSERT_EQ(a.features.size(), b.features.size());
+  EXPECT_EQ(0, std::memcmp(a.features.data(), b.features.data(), a.features.size() * sizeof(double)));
+  ASSERT_EQ(a.odd_rgb.size(), b.odd_rgb.size());
+  EXPECT_EQ(0, std::memcmp(a.odd_rgb.data(), b.odd_rgb.data(), a.odd_rgb.size() * sizeof(double)));
+  EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)));
+  EXPECT_TRUE(b.odd_sum.empty());  // the luminance halves are not in a part
+  plain.reset(2, 1, true);
+  plain.load(part.sum, part.sum_sq);
+  plain.publish(b);
+  EXPECT_TRUE(b.features.empty());
+  EXPECT_TRUE(b.odd_rgb.empty());
 }
 
 }  // namespace

@@ -39,9 +39,24 @@ Accumulation synthetic_part(int w, int h, SampleRange range, unsigned seed) {
   return a;
 }
 
+// `a` with feature sums: the odd halves half their wholes, normals negative.
+Accumulation with_features(Accumulation a) {
+  a.with_features = true;
+  for (const double s : a.sum) a.odd_rgb.push_back(s * 0.5);
+  for (const double q : a.sum_sq)
+    for (int k = 0; k < kFeatureSums; ++k) {
+      const int whole = k % 7;
+      const bool normal = whole >= 3 && whole < 6;
+      a.features.push_back((normal ? -q : q) / (whole + 1) * (k < 7 ? 1.0 : 0.5));
+    }
+  return a;
+}
+
 bool same_merge(const Accumulation& a, const Accumulation& b) {
   return a.width == b.width && a.height == b.height && same_bits(a.sum, b.sum) &&
-         same_bits(a.sum_sq, b.sum_sq) && a.ranges == b.ranges && a.counters == b.counters &&
+         same_bits(a.sum_sq, b.sum_sq) && a.with_features == b.with_features &&
+         same_bits(a.odd_rgb, b.odd_rgb) && same_bits(a.features, b.features) &&
+         a.ranges == b.ranges && a.counters == b.counters &&
          a.id.scene == b.id.scene && a.id.scene_hash == b.id.scene_hash &&
          a.id.settings == b.id.settings && a.id.estimator == b.id.estimator;
 }
@@ -88,6 +103,19 @@ TEST(PartChecksum, EveryFlippedByteIsRefusedOrChangesNothing) {
   const TempDir temp("flip-bytes");
   const fs::path& dir = temp.path();
   const Accumulation part = synthetic_part(8, 6, {4, 8}, 1);
+  write_accumulation((dir / "size.exr").string(), part);
+  std::vector<std::pair<std::size_t, unsigned char>> flips;
+  for (std::size_t at = 0; at < fs::file_size(dir / "size.exr"); ++at) flips.push_back({at, 0xff});
+  const int refused = flips_refused_or_harmless(dir, part, flips);
+  EXPECT_GT(refused, int(flips.size()) * 3 / 4);
+}
+
+// The same with feature layers: a flip in them, in their attribute or in
+// their channels' names and types is refused too, or changes nothing.
+TEST(PartChecksum, EveryFlippedByteOfAPartWithFeaturesIsRefusedOrChangesNothing) {
+  const TempDir temp("flip-features");
+  const fs::path& dir = temp.path();
+  const Accumulation part = with_features(synthetic_part(4, 3, {3, 8}, 5));
   write_accumulation((dir / "size.exr").string(), part);
   std::vector<std::pair<std::size_t, unsigned char>> flips;
   for (std::size_t at = 0; at < fs::file_size(dir / "size.exr"); ++at) flips.push_back({at, 0xff});

@@ -5,6 +5,7 @@
 // by their bit patterns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -218,4 +219,109 @@ TEST_F(Shards, ASampleRangeResumesWithTheSameCommandPlusResume) {
   EXPECT_EQ(resumed.ranges, (std::vector<SampleRange>{{2, 6}}));
   EXPECT_TRUE(same_bits(full.sum, resumed.sum));
   EXPECT_EQ(file_bytes(f("full.pfm")), file_bytes(f("resumed.pfm")));
+}
+
+// The denoiser's feature buffers travel with the parts: a render split in
+// parts (kept with --features) and merged holds the feature sums of the
+// render done whole, bit for bit, and its denoised copy is the whole
+// render's, byte for byte.
+TEST_F(Shards, ShardedFeaturesMergeAndDenoiseBitForBitAsTheWholeRender) {
+  for (const char* sampler : {"independent", "sobol"}) {
+    SCOPED_TRACE(sampler);
+    const std::string s = std::string(" --sampler ") + sampler + " --spp 3";
+    render(s + " --frames 2 --out-denoised " + f("frames-dn.pfm") + " --out-float " + f("frames.exr"));
+    render(s + " --samples 0:6 --out-sum " + f("full.exr") + " --out-denoised " + f("full-dn.pfm") +
+           " --denoiser fast --out-float " + f("full.pfm"));
+    render(s + " --samples 0:6 --out-denoised " + f("full-dn.exr"));
+    render(s + " --samples 3:6 --features --out-sum " + f("b.exr"));
+    render(s + " --samples 0:3 --features --out-sum " + f("a.exr"));
+    const Result m = run("merge " + f("b.exr") + " " + f("a.exr") + " --out " + f("m.exr") + " --out-denoised " +
+                         f("m-dn.pfm") + " --stats " + f("m.json"));
+    ASSERT_EQ(m.code, 0) << m.output;
+    const Accumulation full = read_accumulation(f("full.exr")), merged = read_accumulation(f("m.exr"));
+    ASSERT_TRUE(full.with_features);
+    ASSERT_TRUE(merged.with_features);
+    EXPECT_TRUE(same_bits(full.features, merged.features));
+    EXPECT_TRUE(same_bits(full.odd_rgb, merged.odd_rgb));
+    EXPECT_TRUE(same_bits(full.sum, merged.sum));
+    EXPECT_EQ(file_bytes(f("frames-dn.pfm")), file_bytes(f("m-dn.pfm")));
+    // --denoiser means the same in a merge; a merged file merges and denoises again.
+    const Result fast = run("merge " + f("m.exr") + " --denoiser fast --out-denoised " + f("m-fast.pfm"));
+    ASSERT_EQ(fast.code, 0) << fast.output;
+    EXPECT_EQ(file_bytes(f("full-dn.pfm")), file_bytes(f("m-fast.pfm")));
+    EXPECT_NE(file_bytes(f("full-dn.pfm")), file_bytes(f("m-dn.pfm")));
+    const nlohmann::json stats = nlohmann::json::parse(std::ifstream(f("m.json")));
+    EXPECT_EQ(stats.at("denoised").at("filter"), "quality");
+    EXPECT_EQ(stats.at("denoised").at("estimate_valid"), std::string(sampler) == "independent");
+    // A float EXR holds the halves and their features as layers, and says so;
+    // without feature buffers it holds neither.
+    const std::string with = file_bytes(f("frames.exr"));
+    for (const char* layer : {"even.albedo.R", "odd.normal.Z", "odd.depth.Z", "even.G", "whisker.features"})
+      EXPECT_NE(with.find(layer), std::string::npos) << layer;
+    EXPECT_NE(file_bytes(f("full-dn.exr")).find("whisker.image"), std::string::npos);
+    render(s + " --frames 2 --out-float " + f("plain.exr"));
+    const std::string plain = file_bytes(f("plain.exr"));
+    EXPECT_EQ(plain.find("even.albedo.R"), std::string::npos);
+    EXPECT_EQ(plain.find("whisker.features"), std::string::npos);
+  }
+}
+
+// A part without feature buffers (rendered without them, or by a build
+// before them) merges with parts that have them: the merge keeps none and
+// says so in one line; asked to denoise, it refuses, naming the part.
+TEST_F(Shards, PartsWithAndWithoutFeaturesMergeWithoutThemOrRefuseToDenoise) {
+  render("--spp 2 --samples 0:2 --features --out-sum " + f("a.exr"));
+  render("--spp 2 --samples 2:4 --out-sum " + f("b.exr"));
+  render("--spp 2 --samples 2:4 --features --out-sum " + f("b-features.exr"));
+  Result r = run("merge " + f("a.exr") + " " + f("b.exr") + " --out " + f("m.exr"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("whisker: warning: merge: " + f("b.exr") + " keeps no feature buffers (" + f("a.exr") +
+                          " does); the merge keeps none\n"),
+            std::string::npos) << r.output;
+  EXPECT_FALSE(read_accumulation(f("m.exr")).with_features);
+  // Both kinds merge to the same radiance.
+  r = run("merge " + f("a.exr") + " " + f("b-features.exr") + " --out " + f("mf.exr"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+  EXPECT_TRUE(same_bits(read_accumulation(f("m.exr")).sum, read_accumulation(f("mf.exr")).sum));
+  const std::pair<std::string, std::string> refusals[] = {
+      {f("a.exr") + " " + f("b.exr"), "merge --out-denoised " + f("d.png") + ": " + f("b.exr") +
+                                          " keeps no feature buffers (" + f("a.exr") + " does)\n"},
+      {f("b.exr"), "the parts keep no feature buffers (render them with --features or --out-denoised)\n"},
+      {f("a.exr") + " " + f("later.exr") + " --partial", "not one range"},
+      {f("a.exr") + " --denoiser best", "--denoiser best: expected quality or fast"},
+  };
+  render("--spp 2 --samples 4:6 --features --out-sum " + f("later.exr"));
+  for (const auto& [args, expect] : refusals) {
+    r = run("merge " + args + " --out-denoised " + f("d.png") + " --out " + f("d.pfm"));
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_FALSE(fs::exists(f("d.png")));
+    EXPECT_FALSE(fs::exists(f("d.pfm")));
+  }
+}
+
+// A resumed render starts from the part's radiance sums alone: a resume
+// that renders more is refused with feature buffers asked for (saying how to
+// render the rest instead); a part that holds every sample gives its own.
+TEST_F(Shards, AResumeKeepsFeaturesOnlyWhenItRendersNothingMore) {
+  render("--spp 2 --samples 0:4 --features --out-sum " + f("part.exr") + " --out-denoised " + f("whole.pfm"));
+  render("--spp 2 --samples 0:4 --resume " + f("part.exr") + " --out-denoised " + f("again.pfm") +
+         " --out-sum " + f("again.exr"));
+  EXPECT_EQ(file_bytes(f("whole.pfm")), file_bytes(f("again.pfm")));
+  EXPECT_TRUE(read_accumulation(f("again.exr")).with_features);
+  // The checkpoints of a render that keeps features keep them too.
+  render("--spp 1 --samples 0:4 --features --checkpoint 0 --out-sum " + f("ck.exr"));
+  const Accumulation ck = read_accumulation(f("ck.exr")), part = read_accumulation(f("part.exr"));
+  EXPECT_TRUE(ck.with_features);
+  EXPECT_EQ(ck.features.size(), part.features.size());
+  const Result r = run("--headless --quiet --scene " + scene.string() + " --spp 2 --samples 0:8 --resume " +
+                       f("part.exr") + " --features --out-sum " + f("more.exr"));
+  EXPECT_EQ(r.code, 2) << r.output;
+  EXPECT_NE(r.output.find("--features with --resume " + f("part.exr") +
+                          ": a resumed render keeps no feature buffers; render samples 4:8 as a part of "
+                          "their own (--samples, --features) and merge the two"),
+            std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(f("more.exr")));
 }

@@ -147,6 +147,16 @@ struct SettingOption {
   }
 };
 
+// --out-denoised and --denoiser, of a render and of a merge.
+void add_denoised_options(CLI::App& app, std::string& out, std::string& denoiser, const std::string& help) {
+  app.add_option("--out-denoised", out, help);
+  app.add_option("--denoiser", denoiser,
+                 "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
+      ->capture_default_str()
+      ->check(one_of("--denoiser", {"quality", "fast"}))
+      ->type_name("quality|fast");
+}
+
 void add_app_options(CLI::App& app, CommandLine& o) {
   app.add_flag("--headless", o.headless,
                "Render without a window and write --out/--out-float/--stats: --frames N passes, "
@@ -171,17 +181,13 @@ void add_app_options(CLI::App& app, CommandLine& o) {
                  "Linear float output (.pfm or .exr; see --float-units); an EXR header holds "
                  "the scene, spp, seed, camera, settings and render time");
   app.add_option("--stats", o.stats_json, "Write render statistics as JSON");
-  app.add_option("--out-denoised", o.out_denoised,
-                 "Headless: also write a denoised copy of the image (.png, .pfm or .exr; the raw "
-                 "outputs stay as they are), with its estimated error in the stats");
-  app.add_option("--denoiser", o.denoiser,
-                 "--out-denoised's filter: quality (first-order regression) or fast (a-trous)")
-      ->capture_default_str()
-      ->check(one_of("--denoiser", {"quality", "fast"}))
-      ->type_name("quality|fast");
+  add_denoised_options(app, o.out_denoised, o.denoiser,
+                       "Headless: also write a denoised copy of the image (.png, .pfm or .exr; the raw "
+                       "outputs stay as they are), with its estimated error in the stats");
+  app.add_flag("--features", o.features, "Headless: keep the denoiser's feature buffers (as --out-denoised "
+               "does) in --out-sum and --out-float's EXR, so that a merge of parts can be denoised");
   app.add_flag("--denoised", o.denoised_view, "Viewer: show the denoised image (fast filter); key D switches");
-  app.add_option("--screenshot", o.screenshot,
-                 "Viewer: save the window after --frames N passes and exit");
+  app.add_option("--screenshot", o.screenshot, "Viewer: save the window after --frames N passes and exit");
   int_in(app.add_option("--edit-after", o.edit_after,
                         "Viewer script: apply --edit-light after K passes"),
          0, 1 << 24);
@@ -242,10 +248,6 @@ struct Pairing {
 std::string needs_viewer(const char* option) {
   return std::string(option) + " needs the viewer; drop --headless";
 }
-std::string no_parts(const char* option) {
-  return std::string("--out-denoised with ") + option +
-         ": parts keep no feature buffers; denoise a whole render";
-}
 std::string needs_headless(const CLI::App&) {
   return "--samples, --resume, --out-sum and --checkpoint need --headless";
 }
@@ -266,9 +268,7 @@ const Pairing kPairings[] = {
      }},
     {"--out-denoised", "--headless", true,
      [](const CLI::App&) { return std::string("--out-denoised needs --headless"); }},
-    {"--out-denoised", "--samples", false, [](const CLI::App&) { return no_parts("--samples"); }},
-    {"--out-denoised", "--resume", false, [](const CLI::App&) { return no_parts("--resume"); }},
-    {"--out-denoised", "--out-sum", false, [](const CLI::App&) { return no_parts("--out-sum"); }},
+    {"--features", "--headless", true, [](const CLI::App&) { return std::string("--features needs --headless"); }},
     {"--screenshot", "--headless", false, [](const CLI::App&) { return needs_viewer("--screenshot"); }},
     {"--denoised", "--headless", false, [](const CLI::App&) { return needs_viewer("--denoised"); }},
     {"--edit-after", "--headless", false, [](const CLI::App&) { return needs_viewer("--edit-after"); }},
@@ -306,7 +306,6 @@ std::string broken_pairing(const CLI::App& app) {
     if (given(p.option) && (p.needs ? !given(p.other) : given(p.other))) return p.why(app);
   return {};
 }
-
 
 // The option names of `app` ("--frames", ...).
 std::vector<std::string> option_names(const CLI::App& app) {
@@ -368,11 +367,6 @@ std::string one_line_error(const CLI::ParseError& e, const CLI::App& app) {
   std::replace(m.begin(), m.end(), '\n', ' ');
   return m;
 }
-
-}  // namespace
-
-
-namespace {
 
 // What the parser's failure does: --help and --version print and return 0;
 // anything else is one line, "whisker: ...", and kUsageError.
@@ -437,6 +431,9 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   app.add_option("--stats", o.stats_json, "Write the merged render's statistics as JSON");
   app.add_flag("--partial", o.partial,
                "Write the merge even if sample ranges are missing (warns; the .exr lists its ranges)");
+  add_denoised_options(app, o.out_denoised, o.denoiser,
+                       "Also write a denoised copy of the merged image (.png, .pfm or .exr), from the "
+                       "parts' feature buffers (rendered with --features or --out-denoised)");
   if (const std::string why = missing_value(argc, argv, app); !why.empty())
     return usage_error("merge " + why);
   try {
@@ -444,8 +441,9 @@ std::optional<int> parse_merge_command_line(int argc, char** argv, MergeCommandL
   } catch (const CLI::ParseError& e) {
     return parse_failure(e, app);
   }
-  if (app.count("--stats") && o.stats_json.empty())
-    return usage_error("merge --stats: needs a value, got \"\" (see --help)");
+  for (const char* name : {"--stats", "--out-denoised"})
+    if (app.count(name) && app.get_option(name)->results().front().empty())
+      return usage_error(std::string("merge ") + name + ": needs a value, got \"\" (see --help)");
   return std::nullopt;
 }
 

@@ -34,6 +34,9 @@ struct CommandLine {
   std::string out_denoised;          // headless: the denoised image (.png, .pfm or .exr)
   std::string denoiser = "quality";  // its filter: "fast" or "quality"
   bool denoised_view = false;        // the viewer starts showing the denoised image
+  // Headless: keep the denoiser's feature buffers without --out-denoised (in
+  // --out-sum parts, whose merge may then be denoised, and --out-float's EXR).
+  bool features = false;
   int edit_after = -1;
   std::string edit_light;
   std::string edit_orbit;   // "dx,dy" radians, as a left drag
@@ -83,12 +86,15 @@ std::string settings_man_page();
 // Prints "whisker: MESSAGE" to stderr; returns kUsageError.
 int usage_error(const std::string& message);
 
-// `whisker merge PART.exr... --out FILE... [--stats F] [--partial]` (docs/SHARDS.md).
+// `whisker merge PART.exr... --out FILE... [--stats F] [--partial]
+// [--out-denoised F [--denoiser quality|fast]]` (docs/SHARDS.md).
 struct MergeCommandLine {
   std::vector<std::string> parts;
   std::vector<std::string> outs;
   std::string stats_json;
   bool partial = false;
+  std::string out_denoised;          // the merge's denoised copy (.png, .pfm or .exr)
+  std::string denoiser = "quality";  // its filter, as a render's --denoiser
 };
 
 // Parses merge's argv (argv[0] is "merge") into `out`, as parse_command_line.

@@ -12,13 +12,13 @@
 
 #include <unistd.h>
 
+#include "app/denoised_output.h"
 #include "app/shards.h"
 #include "app/signals.h"
 #include "io/accumulation_io.h"
 #include "io/image_io.h"
 #include "io/render_record.h"
 #include "io/stats_io.h"
-#include "render/film_denoise.h"
 #include "render/progressive.h"
 #include "scene/quote.h"
 #include "scene/scene_io.h"
@@ -54,71 +54,26 @@ void note_written(const HeadlessOptions& o, std::size_t written) {
                 (not_written.empty() ? "" : "not written: " + not_written));
 }
 
-// The scales the denoised image's error is estimated at (box filters, px).
-constexpr int kDenoiseScales[] = {1, 2, 4, 8, 16};
-
-// Writes the denoised copy of `snap` to o.out_denoised (a deterministic
-// estimate is exact: its copy is the image itself), prints its estimated
-// error against the raw image's, and returns the stats' "denoised" record.
+// The denoised copy of `snap` (app/denoised_output.h) as this render's.
 std::string write_denoised(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap,
                            const Image& raw, int threads) {
-  const char* filter = o.denoise_fast ? "fast" : "quality";
-  nlohmann::json rec = {{"file", o.out_denoised}};
-  Image img = raw;
-  const auto t0 = std::chrono::steady_clock::now();
-  if (deterministic_estimate(scene)) {
-    rec["filter"] = "none: the estimate is exact";
-  } else {
-    FilmHalves halves;
-    if (const std::string why = film_halves(snap, halves); !why.empty())
-      throw ImageError("--out-denoised " + printable(o.out_denoised) + ": " + why);
-    const DenoiseInput in = halves.input();
-    const DenoiseResult r =
-        denoise(in, {o.denoise_fast ? DenoiseFilter::Fast : DenoiseFilter::Quality, threads});
-    img.rgb = r.rgb;
-    rec["filter"] = filter;
-    rec["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // Mean squared error per block and channel against the true image, in
-    // the image's units, both from the two half images (render/denoise.h).
-    // The estimate needs independent halves: Sobol points of even and odd
-    // index are stratified together (their difference overstates the noise,
-    // and the estimate reads near zero), independent numbers are not.
-    const bool independent = scene.settings.sampler == SamplerKind::Independent;
-    rec["estimate_valid"] = independent;
-    if (!independent)
-      rec["estimate_note"] = "the Sobol sampler's even and odd samples are not independent halves; "
-                             "render with --sampler independent for an estimate";
-    std::string line;
-    for (const int k : kDenoiseScales) {
-      if (k > std::min(snap.width, snap.height)) break;
-      const ScaleError e = estimate_error(in, r, k);
-      rec["estimated_mse"].push_back({{"scale_px", k},
-                                      {"raw", e.raw_mse},
-                                      {"denoised", e.denoised_mse},
-                                      {"denoised_bias2", e.denoised_bias2},
-                                      {"denoised_better", e.denoised_better()}});
-      char part[64];
-      std::snprintf(part, sizeof part, " %d px %.2g", k, e.raw_mse > 0 ? e.denoised_mse / e.raw_mse : 0.0);
-      line += part;
-    }
-    if (independent)
-      std::printf("denoised (%s filter): estimated error over the raw image's,%s -> %s\n", filter,
-                  line.c_str(), printable(o.out_denoised).c_str());
-    else
-      std::printf("denoised (%s filter), no error estimate (Sobol halves are not independent; "
-                  "--sampler independent gives one) -> %s\n",
-                  filter, printable(o.out_denoised).c_str());
-  }
-  const std::string ext = lower_extension(o.out_denoised);
-  if (ext == ".png") {
-    write_png(o.out_denoised, img);
-  } else {
-    ImageAttributes a = render_record(scene, snap, o.display_units);
-    a.emplace_back("whisker.image", std::string("denoised (") + rec["filter"].get<std::string>() +
-                                        "), not the raw estimate; the stats give its estimated error");
-    write_float_image(o.out_denoised, o.display_units ? display_referred(img) : img, a);
-  }
-  return rec.dump();
+  const DenoisedOutput out{o.out_denoised,
+                           o.denoise_fast,
+                           threads,
+                           deterministic_estimate(scene),
+                           scene.settings.sampler == SamplerKind::Independent,
+                           o.display_units,
+                           render_record(scene, snap, o.display_units)};
+  return write_denoised(out, snap, raw);
+}
+
+// --out-float: an EXR also holds the feature buffers when the render kept them.
+void write_float_output(const HeadlessOptions& o, const Scene& scene, const Snapshot& snap, const Image& img) {
+  ImageAttributes a = render_record(scene, snap, o.display_units);
+  ImageLayers layers;
+  if (lower_extension(o.out_float) == ".exr") layers = feature_layers(snap, o.display_units);
+  if (!layers.empty()) add_feature_note(a);
+  write_float_image(o.out_float, o.display_units ? display_referred(img) : img, a, layers);
 }
 
 // The images, the summary line and the stats of a finished render.
@@ -135,8 +90,7 @@ int write_outputs(const HeadlessOptions& o, const Scene& scene, const Snapshot& 
     note_written(o, ++written);
   }
   if (!o.out_float.empty()) {
-    write_float_image(o.out_float, o.display_units ? display_referred(img) : img,
-                      render_record(scene, snap, o.display_units));
+    write_float_output(o, scene, snap, img);
     note_written(o, ++written);
   }
   if (!o.out_sum.empty()) {
@@ -297,7 +251,7 @@ int run_headless(const HeadlessOptions& o) {
   }
   ProgressiveRenderer renderer(o.threads);
   renderer.set_stop_when_exact(exact);
-  renderer.set_features(!o.out_denoised.empty());
+  renderer.set_features(o.features);
   const auto gen = renderer.set_scene(scene, o.plan.start);
   renderer.start();
   Checkpointer checkpoints(renderer, gen, o.out_sum, o.checkpoint, o.plan);
@@ -323,8 +277,9 @@ int run_headless(const HeadlessOptions& o) {
   renderer.take_snapshot(snap);  // the last pass completed before the stop
 
   if (const std::string why = renderer.failure(); !why.empty()) {
+    const std::uint64_t bytes = render_memory(scene, !o.out_sum.empty(), bool(o.plan.start.resume), o.features);
     std::fprintf(stderr, "whisker: %s: needs about %llu MB; nothing written\n", why.c_str(),
-                 (unsigned long long)((render_memory(scene, !o.out_sum.empty(), bool(o.plan.start.resume)) >> 20) + 1));
+                 (unsigned long long)((bytes >> 20) + 1));
     return 2;
   }
   if (interrupt_signal()) {

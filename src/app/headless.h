@@ -28,6 +28,9 @@ struct HeadlessOptions {
   // and its filter: the raw outputs stay as they are.
   std::string out_denoised;
   bool denoise_fast = false;
+  // Keep the denoiser's feature buffers (--features, or --out-denoised):
+  // in --out-sum, --out-float's EXR and the checkpoints too.
+  bool features = false;
   // No --frames, --samples or --resume on the command line: a scene whose
   // estimate is deterministic (deterministic_estimate) renders one pass,
   // whatever its target (--target-spp, else its file's), and records the

@@ -35,6 +35,7 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.out_float = cl.out_float;
   h.out_denoised = cl.out_denoised;
   h.denoise_fast = cl.denoiser == "fast";
+  h.features = cl.features || !cl.out_denoised.empty();
   h.stats_json = cl.stats_json;
   h.progress = !cl.quiet;
   h.progress_every = cl.progress_every;
@@ -45,7 +46,7 @@ int headless(const CommandLine& cl, const Scene& scene) {
   h.target_spp_given = given(cl, "--target-spp");
   if (const std::string why = plan_shard(cl, scene, h.plan); !why.empty()) return usage_error(why);
   // What will not fit is refused before anything is rendered.
-  const std::uint64_t bytes = render_memory(scene, !h.out_sum.empty(), bool(h.plan.start.resume));
+  const std::uint64_t bytes = render_memory(scene, !h.out_sum.empty(), bool(h.plan.start.resume), h.features);
   const std::string doing = "rendering " + std::to_string(scene.camera.width) + " x " +
                             std::to_string(scene.camera.height) + " pixels";
   if (const std::string why = check_memory(doing, bytes); !why.empty()) return usage_error(why);

@@ -45,9 +45,27 @@ std::string check_resume(const std::string& path, const Scene& scene, const Rend
   return {};
 }
 
+// With feature buffers asked for (--features, --out-denoised), a resume: a
+// part that holds every sample gives its own; a render that goes on cannot
+// yet (its film starts from the part's radiance sums alone).
+std::string resumed_features(const CommandLine& cl, const ShardPlan& plan) {
+  if (!cl.features && cl.out_denoised.empty()) return {};
+  const Accumulation& part = *plan.start.resume;
+  const std::string option = cl.out_denoised.empty() ? "--features" : "--out-denoised";
+  if (!plan.complete()) {
+    const SampleRange rest{part.ranges.front().end, plan.start.first_sample + plan.target};
+    return option + " with --resume " + cl.resume + ": a resumed render keeps no feature buffers; render " +
+           "samples " + ranges_to_string({rest}) + " as a part of their own (--samples, --features) and " +
+           "merge the two";
+  }
+  if (!part.with_features)
+    return option + " with --resume " + cl.resume + ": the part keeps no feature buffers (render it with --features)";
+  return {};
+}
+
 }  // namespace
 
-std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume) {
+std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume, bool features) {
   const std::uint64_t pixels = std::uint64_t(scene.camera.width) * std::uint64_t(scene.camera.height);
   // The film's double sums (32), two snapshots of them (32 each), three
   // output images (12 each); with --out-sum the checkpoint's snapshot and
@@ -56,6 +74,8 @@ std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume) {
   std::uint64_t per_pixel = 32 + 2 * 32 + 3 * 12;
   if (out_sum) per_pixel += 32 + 32;
   if (resume) per_pixel += 32;
+  // Feature buffers: 17 doubles a pixel more in the film and each copy.
+  if (features) per_pixel += (out_sum ? 5 : 3) * 136 + (resume ? 136 : 0);
   std::uint64_t bytes = pixels * per_pixel;
   for (const MeshObject& m : scene.meshes)
     if (m.mesh)  // the mesh and about as much again for its BVH and world copy
@@ -140,7 +160,7 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
   plan.start.first_sample = done.begin;
   plan.start.resume = std::move(acc);
   plan.target = range.end - range.begin;
-  return {};
+  return resumed_features(cl, plan);
 }
 
 Checkpointer::Checkpointer(const ProgressiveRenderer& renderer, std::uint64_t generation,

@@ -34,10 +34,14 @@ std::string plan_shard(const CommandLine& cl, const Scene& scene, ShardPlan& pla
 // bytes or the PNG's pixels and stream; the parts are read a band of rows
 // at a time, accumulation_io.h).
 constexpr std::uint64_t kMergeBytesPerPixel = 32 + 12 + 12;
+// With feature buffers: their merged sums, the snapshot's, and the denoiser's
+// halves and planes (--out-denoised).
+constexpr std::uint64_t kMergeFeatureBytesPerPixel = 136 + 40 * 4 + 64 * 4;
 // About how many bytes a headless render of `scene` needs: its image
 // buffers (film, published and copied snapshots, output images; more with
-// --out-sum and --resume) and its meshes with their BVH.
-std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume);
+// --out-sum and --resume, more with feature buffers) and its meshes with
+// their BVH.
+std::uint64_t render_memory(const Scene& scene, bool out_sum, bool resume, bool features = false);
 // "" if `bytes` more fit under the memory limit (ulimit -v: RLIMIT_AS less
 // what the process maps now) and in the machine (RAM and swap); else what
 // does not fit, naming `doing` and both figures in MB.

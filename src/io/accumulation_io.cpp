@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/image_error.h"
 #include "io/part_checks.h"
+#include "io/part_layers.h"
 
 #ifdef WHISKER_HAVE_OPENEXR
 #include <OpenEXR/ImfChannelList.h>
@@ -32,31 +33,6 @@ namespace {
 // Format 2 added the estimator's identity and the checksums.
 constexpr const char* kFormat = "whisker-accumulation 2";
 constexpr const char* kOldFormat = "whisker-accumulation 1";
-
-// A double's 64 bits as two 32-bit words (EXR's UINT channels): exact by
-// construction, whatever the value.
-void split_bits(double d, std::uint32_t& hi, std::uint32_t& lo) {
-  std::uint64_t u;
-  std::memcpy(&u, &d, sizeof u);
-  hi = std::uint32_t(u >> 32);
-  lo = std::uint32_t(u);
-}
-double join_bits(std::uint32_t hi, std::uint32_t lo) {
-  const std::uint64_t u = (std::uint64_t(hi) << 32) | lo;
-  double d;
-  std::memcpy(&d, &u, sizeof d);
-  return d;
-}
-
-// The exact channels: four doubles per pixel (sum R, G, B and the luminance
-// sum of squares), each as a .hi and a .lo word.
-constexpr const char* kExact[4] = {"sum.R", "sum.G", "sum.B", "sumsq.Y"};
-
-std::string text(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 }  // namespace
 
@@ -83,58 +59,41 @@ std::vector<std::string> attribute_values(const Accumulation& acc) {
           std::to_string(acc.counters.passes),
           std::to_string(acc.counters.nan_count),
           std::to_string(acc.counters.rays),
-          text(acc.counters.seconds)};
+          exact_text(acc.counters.seconds)};
 }
 
-// A band of rows as stored: per pixel the 11 words of the channels in
-// kWordChannels' order (R, G, B as float bits, then each double's hi and
-// lo), row after row. The pixel checksum is the CRC-32 of the bands in turn.
-constexpr std::size_t kWords = 11;
-const char* const kWordChannels[kWords] = {"R",        "G",        "B",        "sum.R.hi",
-                                           "sum.R.lo", "sum.G.hi", "sum.G.lo", "sum.B.hi",
-                                           "sum.B.lo", "sumsq.Y.hi", "sumsq.Y.lo"};
-
 // Slices of the band of rows from y0 (in the file's coordinates) at `band`.
-Imf::FrameBuffer band_frame(std::vector<std::uint32_t>& band, const Imath::Box2i& dw, int y0) {
+Imf::FrameBuffer band_frame(std::vector<std::uint32_t>& band, const PartLayout& layout,
+                            const Imath::Box2i& dw, int y0) {
   const std::size_t width = std::size_t(dw.max.x) - dw.min.x + 1;
-  const std::size_t xs = kWords * sizeof(std::uint32_t), ys = xs * width;
+  const std::size_t xs = layout.words() * sizeof(std::uint32_t), ys = xs * width;
   // OpenEXR addresses pixel (x, y) at base + x * xs + y * ys.
   char* base = reinterpret_cast<char*>(band.data()) - std::ptrdiff_t(dw.min.x) * std::ptrdiff_t(xs) -
                std::ptrdiff_t(y0) * std::ptrdiff_t(ys);
   Imf::FrameBuffer fb;
-  for (std::size_t c = 0; c < kWords; ++c)
-    fb.insert(kWordChannels[c], Imf::Slice(c < 3 ? Imf::FLOAT : Imf::UINT,
-                                           base + c * sizeof(std::uint32_t), xs, ys));
+  for (std::size_t c = 0; c < layout.words(); ++c)
+    fb.insert(layout.channels[c], Imf::Slice(layout.is_float(c) ? Imf::FLOAT : Imf::UINT,
+                                             base + c * sizeof(std::uint32_t), xs, ys));
   return fb;
-}
-
-// The band of `rows` rows of `acc` from row y0, as write_accumulation stores it.
-void fill_band(const Accumulation& acc, int y0, int rows, std::vector<std::uint32_t>& band) {
-  // The mean as mean_image computes it.
-  const float inv = acc.samples() ? 1.0f / float(acc.samples()) : 0.0f;
-  const std::size_t first = std::size_t(y0) * acc.width, pixels = std::size_t(rows) * acc.width;
-  band.resize(pixels * kWords);
-  for (std::size_t p = 0; p < pixels; ++p) {
-    std::uint32_t* w = &band[p * kWords];
-    for (int c = 0; c < 3; ++c) {
-      const float mean = float(acc.sum[3 * (first + p) + c]) * inv;
-      std::memcpy(&w[c], &mean, sizeof mean);
-    }
-    for (int c = 0; c < 4; ++c)
-      split_bits(c < 3 ? acc.sum[3 * (first + p) + c] : acc.sum_sq[first + p], w[3 + 2 * c], w[4 + 2 * c]);
-  }
 }
 
 std::uint32_t band_crc(std::uint32_t crc, const std::vector<std::uint32_t>& band) {
   return crc32_of(crc, band.data(), band.size() * sizeof(band[0]));
 }
 
+// The attribute a part with feature layers has, and its value: the sample
+// ranges those layers sum, as whisker.samples gives them.
+constexpr const char* kFeaturesAttribute = "whisker.features";
+
 // The CRC-32 of Whisker's attributes (name, NUL, value, NUL, in kAttributes'
-// order) and of the data window the pixels are read in.
-std::uint32_t header_crc(const std::vector<std::string>& values, const Imath::Box2i& dw) {
+// order, then whisker.features when the part has it) and of the data
+// window the pixels are read in.
+std::uint32_t header_crc(const std::vector<std::string>& values, const std::string& features,
+                         const Imath::Box2i& dw) {
   std::string all;
   for (std::size_t i = 0; i < kAttributeCount; ++i)
     ((all += "whisker.") += kAttributes[i]).append(1, '\0').append(values[i]).append(1, '\0');
+  if (!features.empty()) (all += kFeaturesAttribute).append(1, '\0').append(features).append(1, '\0');
   all += "dataWindow " + std::to_string(dw.min.x) + " " + std::to_string(dw.min.y) + " " +
          std::to_string(dw.max.x) + " " + std::to_string(dw.max.y);
   return crc32_of(0, all.data(), all.size());
@@ -145,32 +104,37 @@ std::uint32_t header_crc(const std::vector<std::string>& values, const Imath::Bo
 void write_accumulation(const std::string& path, const Accumulation& acc, int band_rows) {
   const std::size_t pixels = std::size_t(acc.width) * acc.height;
   if (acc.width <= 0 || acc.height <= 0 || acc.sum.size() != pixels * 3 ||
-      acc.sum_sq.size() != pixels)
+      acc.sum_sq.size() != pixels ||
+      (acc.with_features && (acc.odd_rgb.size() != pixels * 3 || acc.features.size() != pixels * kFeatureSums)))
     throw ImageError(path + ": empty or malformed accumulation");
   band_rows = std::max(band_rows, 1);
   const std::vector<std::string> values = attribute_values(acc);
+  const std::string features = acc.with_features ? ranges_to_string(acc.ranges) : std::string();
+  const PartLayout layout(acc.with_features);
   const Imath::Box2i dw({0, 0}, {acc.width - 1, acc.height - 1});
   // The header holds the pixels' checksum: one pass over the bands for it,
   // one to write them (a band at a time, never a copy of the image).
   std::vector<std::uint32_t> band;
   std::uint32_t crc = 0;
   for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
-    fill_band(acc, y0, std::min(band_rows, acc.height - y0), band);
+    fill_band(acc, layout, y0, std::min(band_rows, acc.height - y0), band);
     crc = band_crc(crc, band);
   }
   write_file_atomically(path, [&](const std::string& tmp) {
     try {
       Imf::Header header(acc.width, acc.height);
-      for (std::size_t c = 0; c < kWords; ++c)
-        header.channels().insert(kWordChannels[c], Imf::Channel(c < 3 ? Imf::FLOAT : Imf::UINT));
+      for (std::size_t c = 0; c < layout.words(); ++c)
+        header.channels().insert(layout.channels[c], Imf::Channel(layout.is_float(c) ? Imf::FLOAT : Imf::UINT));
       for (std::size_t i = 0; i < kAttributeCount; ++i)
         header.insert(std::string("whisker.") + kAttributes[i], Imf::StringAttribute(values[i]));
-      header.insert("whisker.checksum", Imf::StringAttribute(checksum_text(header_crc(values, dw), crc)));
+      if (!features.empty()) header.insert(kFeaturesAttribute, Imf::StringAttribute(features));
+      header.insert("whisker.checksum",
+                    Imf::StringAttribute(checksum_text(header_crc(values, features, dw), crc)));
       Imf::OutputFile file(tmp.c_str(), header);
       for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
         const int rows = std::min(band_rows, acc.height - y0);
-        fill_band(acc, y0, rows, band);
-        file.setFrameBuffer(band_frame(band, dw, y0));
+        fill_band(acc, layout, y0, rows, band);
+        file.setFrameBuffer(band_frame(band, layout, dw, y0));
         file.writePixels(rows);
       }
       return true;
@@ -211,8 +175,9 @@ double seconds_attribute(const std::string& v, const std::string& path) {
   return d;
 }
 
-// A part open for reading, its header checked: Whisker's attributes against
-// the header checksum, then each field, the size and the word channels.
+// A part open for reading, its header checked: each of Whisker's fields,
+// the size, the feature layers' samples and the word channels, then the
+// attributes against the header checksum.
 class PartFile {
  public:
   explicit PartFile(const std::string& path);
@@ -224,9 +189,11 @@ class PartFile {
 
  private:
   void parse(const std::vector<std::string>& values);
+  void parse_features(const Imf::Header& h);
   void check_channels() const;
 
   std::string path_;
+  std::string features_;  // whisker.features, "" without
   std::unique_ptr<Imf::InputFile> file_;
   Imath::Box2i dw_;
   std::uint32_t pixels_crc_ = 0;
@@ -256,10 +223,11 @@ PartFile::PartFile(const std::string& path) : path_(path) {
   // Each field as the writer writes it first, so that a value no writer
   // writes is named as such (the header checksum would refuse it too).
   parse(values);
-  if (const std::uint32_t crc = header_crc(values, dw_); crc != header)
+  parse_features(h);
+  check_channels();
+  if (const std::uint32_t crc = header_crc(values, features_, dw_); crc != header)
     throw AccumulationError(path + ": damaged: its header does not match its checksum (crc32 " +
                             crc_text(crc) + ", whisker.checksum says " + crc_text(header) + ")");
-  check_channels();
   // A file cut short (a copy that did not finish, a full disk): its line
   // offsets point past its end. Told by the header pass too, before a
   // merge checks ranges.
@@ -289,56 +257,68 @@ void PartFile::parse(const std::vector<std::string>& values) {
   acc.height = int(hgt);
 }
 
+void PartFile::parse_features(const Imf::Header& h) {
+  // The feature layers sum the part's samples, no others: a mean of them
+  // divides by the part's count (whisker.samples).
+  const auto* a = h.findTypedAttribute<Imf::StringAttribute>(kFeaturesAttribute);
+  if (!a) return;
+  features_ = a->value();
+  std::vector<SampleRange> ranges;
+  if (!parse_ranges(features_, ranges) || ranges != acc.ranges)
+    throw AccumulationError(path_ + ": " + kFeaturesAttribute + " \"" + cut_value(features_) +
+                            "\": the feature layers hold other samples than the part's " +
+                            ranges_to_string(acc.ranges) + " (whisker.samples)");
+  acc.with_features = true;
+}
+
 void PartFile::check_channels() const {
   // The exact channels are 32-bit words; OpenEXR would convert a FLOAT or
   // HALF channel to UINT silently, and the doubles rebuilt from those
   // words would be wrong. The mean channels are FLOAT, as written.
-  for (std::size_t c = 0; c < kWords; ++c) {
-    const Imf::Channel* ch = file_->header().channels().findChannel(kWordChannels[c]);
-    if (!ch) throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " missing");
-    const Imf::PixelType want = c < 3 ? Imf::FLOAT : Imf::UINT;
+  const PartLayout layout(acc.with_features);
+  const Imf::ChannelList& list = file_->header().channels();
+  for (std::size_t c = 0; c < layout.words(); ++c) {
+    const std::string& name = layout.channels[c];
+    const Imf::Channel* ch = list.findChannel(name);
+    if (!ch)
+      throw AccumulationError(path_ + ": channel " + name + " missing" +
+                              (acc.with_features && c >= PartLayout(false).words()
+                                   ? " (whisker.features says the part has every feature layer)"
+                                   : ""));
+    const Imf::PixelType want = layout.is_float(c) ? Imf::FLOAT : Imf::UINT;
     if (ch->type != want)
-      throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " is " +
+      throw AccumulationError(path_ + ": channel " + name + " is " +
                               (ch->type == Imf::FLOAT ? "FLOAT" : ch->type == Imf::HALF ? "HALF" : "UINT") +
-                              ", not " + (c < 3 ? "FLOAT" : "UINT (the words of a double)") +
+                              ", not " + (layout.is_float(c) ? "FLOAT" : "UINT (the words of a double)") +
                               "; not written by whisker");
     if (ch->xSampling != 1 || ch->ySampling != 1)
-      throw AccumulationError(path_ + ": channel " + kWordChannels[c] + " is subsampled; not written by whisker");
+      throw AccumulationError(path_ + ": channel " + name + " is subsampled; not written by whisker");
   }
+  if (acc.with_features) return;
+  // Feature layers without the attribute that says which samples they sum.
+  for (const std::string& name : PartLayout(true).channels)
+    if (list.findChannel(name) && std::find(layout.channels.begin(), layout.channels.end(), name) ==
+                                      layout.channels.end())
+      throw AccumulationError(path_ + ": channel " + name + " without " + kFeaturesAttribute +
+                              " (the samples the feature layers hold); not written by whisker");
 }
 
 void PartFile::read_sums(int band_rows, const SumBand& band) {
   band_rows = std::max(band_rows, 1);
+  const PartLayout layout(acc.with_features);
   std::vector<std::uint32_t> words;
-  std::vector<double> sum, sum_sq;
+  BandDoubles doubles;
   std::uint32_t crc = 0;
   for (int y0 = 0; y0 < acc.height; y0 += band_rows) {
     const int rows = std::min(band_rows, acc.height - y0);
     const std::size_t pixels = std::size_t(rows) * acc.width;
-    words.assign(pixels * kWords, 0);
-    file_->setFrameBuffer(band_frame(words, dw_, dw_.min.y + y0));
+    words.assign(pixels * layout.words(), 0);
+    file_->setFrameBuffer(band_frame(words, layout, dw_, dw_.min.y + y0));
     file_->readPixels(dw_.min.y + y0, dw_.min.y + y0 + rows - 1);
     crc = band_crc(crc, words);
-    sum.resize(pixels * 3);
-    sum_sq.resize(pixels);
-    for (std::size_t p = 0; p < pixels; ++p) {
-      const std::uint32_t* w = &words[p * kWords];
-      for (int c = 0; c < 3; ++c) sum[3 * p + c] = join_bits(w[3 + 2 * c], w[4 + 2 * c]);
-      sum_sq[p] = join_bits(w[9], w[10]);
-      // Sums of radiance and of squares are finite and >= 0 (the renderer
-      // drops NaN and infinite samples, and counts them in nan_count): any
-      // other value is damage, and would spread NaN through a merge or a resume.
-      for (int c = 0; c < 4; ++c) {
-        const double v = c < 3 ? sum[3 * p + c] : sum_sq[p];
-        if (std::isfinite(v) && v >= 0.0) continue;
-        char where[64];
-        std::snprintf(where, sizeof where, " of pixel (%zu, %zu) is ", p % std::size_t(acc.width),
-                      y0 + p / std::size_t(acc.width));
-        throw AccumulationError(path_ + ": " + kExact[c] + where + text(v) +
-                                "; a part holds finite sums >= 0 (damaged?)");
-      }
-    }
-    band(y0, rows, sum.data(), sum_sq.data());
+    if (const std::string why = decode_band(words, layout, pixels, acc.width, y0, doubles); !why.empty())
+      throw AccumulationError(path_ + ": " + why);
+    band(doubles.view(std::size_t(y0) * acc.width));
   }
   if (crc != pixels_crc_)
     throw AccumulationError(path_ + ": damaged: its pixels do not match its checksum (crc32 " +
@@ -371,12 +351,19 @@ Accumulation read_accumulation(const std::string& path, int band_rows) {
   return guarded(path, [&] {
     PartFile part(path);
     Accumulation& acc = part.acc;
-    acc.sum.resize(std::size_t(acc.width) * acc.height * 3);
-    acc.sum_sq.resize(std::size_t(acc.width) * acc.height);
-    part.read_sums(band_rows, [&](int y0, int rows, const double* s, const double* q) {
-      const std::size_t first = std::size_t(y0) * acc.width, pixels = std::size_t(rows) * acc.width;
-      std::copy(s, s + pixels * 3, acc.sum.begin() + first * 3);
-      std::copy(q, q + pixels, acc.sum_sq.begin() + first);
+    const std::size_t all = std::size_t(acc.width) * acc.height;
+    acc.sum.resize(all * 3);
+    acc.sum_sq.resize(all);
+    acc.odd_rgb.resize(acc.with_features ? all * 3 : 0);
+    acc.features.resize(acc.with_features ? all * kFeatureSums : 0);
+    part.read_sums(band_rows, [&](const SumsBand& b) {
+      const auto copy = [&](const double* from, std::vector<double>& to, std::size_t n) {
+        if (from) std::copy(from, from + b.pixels * n, to.begin() + std::ptrdiff_t(b.first * n));
+      };
+      copy(b.sum, acc.sum, 3);
+      copy(b.sum_sq, acc.sum_sq, 1);
+      copy(b.odd_rgb, acc.odd_rgb, 3);
+      copy(b.features, acc.features, kFeatureSums);
     });
     return std::move(acc);
   });
@@ -388,7 +375,7 @@ Accumulation read_accumulation_header(const std::string& path) {
 
 Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
                                       const std::function<void(const Accumulation&)>& before_sums,
-                                      int band_rows) {
+                                      int band_rows, std::string* features_dropped) {
   // Headers first, checked against each other; then each part's sums band
   // by band into the merged sums, in range order (the exactness rule).
   std::vector<NamedAccumulation> parts;
@@ -403,15 +390,14 @@ Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
   }
   std::vector<std::size_t> order;
   Accumulation out = plan_merge(parts, order);
+  if (features_dropped) *features_dropped = mixed_features(parts);
   if (before_sums) before_sums(out);
   for (const std::size_t i : order) {
     guarded(parts[i].name, [&] {
       PartFile part(parts[i].name);
       if (part.checksum != checksums[i])
         throw AccumulationError(parts[i].name + ": changed while the merge read it");
-      part.read_sums(band_rows, [&](int y0, int rows, const double* s, const double* q) {
-        add_sums(out, std::size_t(y0) * out.width, std::size_t(rows) * out.width, s, q);
-      });
+      part.read_sums(band_rows, [&](const SumsBand& b) { add_sums(out, b); });
       return 0;
     });
   }
@@ -433,7 +419,7 @@ Accumulation read_accumulation(const std::string& path, int) { return read_accum
 Accumulation read_accumulation_header(const std::string& path) { return read_accumulation(path, 0); }
 
 Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
-                                      const std::function<void(const Accumulation&)>&, int) {
+                                      const std::function<void(const Accumulation&)>&, int, std::string*) {
   if (paths.empty()) throw AccumulationError("nothing to merge");
   return read_accumulation(paths[0], 0);
 }

@@ -1,7 +1,8 @@
 // Accumulation files: OpenEXR images whose R, G, B channels are the mean
 // radiance (any EXR viewer shows them) and whose other channels carry the
-// exact double sums, with the sample ranges, the render's identity and a
-// checksum of both as header attributes (docs/SHARDS.md, "File format").
+// exact double sums (and, when the render kept them, the denoiser's feature
+// sums: io/part_layers.h), with the sample ranges, the render's identity and
+// a checksum of both as header attributes (docs/SHARDS.md, "File format").
 #pragma once
 
 #include <functional>
@@ -23,15 +24,15 @@ void write_accumulation(const std::string& path, const Accumulation& acc, int ba
 // Throws AccumulationError naming the path and what is wrong (one line).
 // Its checksums are checked (whisker.checksum: Whisker's header attributes
 // and the pixels as stored), and its sums: finite and >= 0, from UINT word
-// channels.
+// channels; its feature layers (whisker.features) all there, summing the
+// part's samples, their values possible (part_layers.h).
 Accumulation read_accumulation(const std::string& path, int band_rows = kBandRows);
 // The same without the sums (left empty): size, ranges, identity, counters;
 // the header's checksum is checked, the pixels' is not.
 Accumulation read_accumulation_header(const std::string& path);
 
-// Rows y0 .. y0 + rows - 1 of a part's sums: 3 per pixel in `sum`, one in
-// `sum_sq`, row-major.
-using SumBand = std::function<void(int y0, int rows, const double* sum, const double* sum_sq)>;
+// A band of rows of a part's sums (its feature sums too when it has them).
+using SumBand = std::function<void(const SumsBand& band)>;
 // Reads the part's sums band by band from the top, giving each to `band`,
 // and returns its header (sums empty). The pixels' checksum is checked
 // after the last band: a band given before a throw may be damaged.
@@ -42,8 +43,11 @@ Accumulation read_accumulation_bands(const std::string& path, int band_rows, con
 // header (sums empty; it may throw), then each part's sums added band by
 // band into the merged sums in range order, each part's checksums checked.
 // Holds the merged sums and one band of one part. Throws AccumulationError.
+// The merge keeps feature sums when every part has them; when only some do
+// it keeps none, and `features_dropped` (if given) says which part has none
+// (mixed_features), before `before_sums` is called.
 Accumulation merge_accumulation_files(const std::vector<std::string>& paths,
                                       const std::function<void(const Accumulation&)>& before_sums = {},
-                                      int band_rows = kBandRows);
+                                      int band_rows = kBandRows, std::string* features_dropped = nullptr);
 
 }  // namespace whisker

@@ -102,13 +102,18 @@ bool have_exr() {
 #endif
 }
 
-void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes) {
+void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes,
+               const ImageLayers& layers) {
   check(img, path);
+  for (const ImageLayer& l : layers)
+    if (l.values.size() != std::size_t(img.width) * img.height)
+      throw ImageError(path + ": layer " + l.name + " is not of the image's size");
 #ifdef WHISKER_HAVE_OPENEXR
   write_file_atomically(path, [&](const std::string& tmp) {
     try {
       Imf::Header header(img.width, img.height);
       for (const char* c : {"R", "G", "B"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+      for (const ImageLayer& l : layers) header.channels().insert(l.name, Imf::Channel(Imf::FLOAT));
       for (const auto& [name, text] : attributes)
         header.insert(name, Imf::StringAttribute(text));
       Imf::OutputFile file(tmp.c_str(), header);
@@ -118,6 +123,9 @@ void write_exr(const std::string& path, const Image& img, const ImageAttributes&
       fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
       fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
       fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+      for (const ImageLayer& l : layers)
+        fb.insert(l.name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(l.values.data())),
+                                     sizeof(float), sizeof(float) * img.width));
       file.setFrameBuffer(fb);
       file.writePixels(img.height);
       return true;
@@ -131,10 +139,10 @@ void write_exr(const std::string& path, const Image& img, const ImageAttributes&
 }
 
 void write_float_image(const std::string& path, const Image& img,
-                       const ImageAttributes& attributes) {
+                       const ImageAttributes& attributes, const ImageLayers& layers) {
   const std::string ext = lower_extension(path);  // x.EXR too
   if (ext == ".pfm") return write_pfm(path, img);
-  if (ext == ".exr") return write_exr(path, img, attributes);
+  if (ext == ".exr") return write_exr(path, img, attributes, layers);
   throw ImageError(path + ": unknown float image type \"" + ext + "\" (use .pfm or .exr)");
 }
 

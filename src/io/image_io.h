@@ -25,12 +25,23 @@ void write_png_rgb8(const std::string& path, int width, int height,
 // Name and text of a string attribute in an EXR header (what was rendered how).
 using ImageAttributes = std::vector<std::pair<std::string, std::string>>;
 
+// A channel beside R, G, B in an EXR: its name and one float a pixel (row
+// 0 at the top).
+struct ImageLayer {
+  std::string name;
+  std::vector<float> values;
+};
+using ImageLayers = std::vector<ImageLayer>;
+
 void write_pfm(const std::string& path, const Image& img);
-// Throws if built without OpenEXR; `attributes` go into the header as strings.
-void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes = {});
-// By extension, any case: .pfm or .exr (a PFM has no room for attributes).
+// Throws if built without OpenEXR; `attributes` go into the header as
+// strings, `layers` as FLOAT channels (each of the image's size).
+void write_exr(const std::string& path, const Image& img, const ImageAttributes& attributes = {},
+               const ImageLayers& layers = {});
+// By extension, any case: .pfm or .exr (a PFM has no room for attributes or
+// layers).
 void write_float_image(const std::string& path, const Image& img,
-                       const ImageAttributes& attributes = {});
+                       const ImageAttributes& attributes = {}, const ImageLayers& layers = {});
 
 // The radiance that the report's mapping min(255, L^(1/2.2)) shows as full
 // white: 255^2.2 (docs/SCENES.md "Pixel value shown").

@@ -12,10 +12,15 @@
 #endif
 
 #include "render/accumulation.h"
+#include "scene/quote.h"
 
 namespace whisker {
 
-std::string cut_value(const std::string& v) { return v.size() <= 40 ? v : v.substr(0, 40) + "..."; }
+// Escaped here (scene/quote.h) as well as where a refusal is printed: the
+// message itself is one line, whatever bytes a damaged header holds.
+std::string cut_value(const std::string& v) {
+  return v.size() <= 40 ? printable(v) : printable(v.substr(0, 40)) + "...";
+}
 
 namespace {
 

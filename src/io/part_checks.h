@@ -9,7 +9,7 @@
 
 namespace whisker {
 
-// A value from a file, cut for a one-line message.
+// A value from a file, cut and escaped for a one-line message.
 std::string cut_value(const std::string& v);
 
 // Walks the attributes of the EXR header at `path` (OpenEXR file layout:

@@ -133,6 +133,12 @@ Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
   a.height = snap.height;
   a.sum = snap.sum;
   a.sum_sq = snap.sum_sq;
+  const std::size_t pixels = std::size_t(snap.width) * std::size_t(snap.height);
+  if (snap.features.size() == pixels * kFeatureSums && snap.odd_rgb.size() == pixels * 3) {
+    a.with_features = true;
+    a.odd_rgb = snap.odd_rgb;
+    a.features = snap.features;
+  }
   if (snap.spp > 0) a.ranges = {{first_sample, first_sample + snap.spp}};
   a.counters = snap.counters;
   a.id = id;
@@ -140,15 +146,8 @@ Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
 }
 
 Snapshot snapshot_of(const Accumulation& acc) {
-  Snapshot s;
-  s.width = acc.width;
-  s.height = acc.height;
-  s.sum = acc.sum;
-  s.sum_sq = acc.sum_sq;
-  s.spp = acc.samples();
-  s.counters = acc.counters;
-  s.done = true;
-  return s;
+  Accumulation copy = acc;
+  return snapshot_of(std::move(copy));
 }
 
 Snapshot snapshot_of(Accumulation&& acc) {
@@ -156,10 +155,16 @@ Snapshot snapshot_of(Accumulation&& acc) {
   s.width = acc.width;
   s.height = acc.height;
   s.spp = acc.samples();
+  // Where the samples start: which of them are odd (the half images).
+  s.first_sample = acc.ranges.empty() ? 0 : acc.ranges.front().begin;
   s.counters = acc.counters;
   s.done = true;
   s.sum = std::move(acc.sum);
   s.sum_sq = std::move(acc.sum_sq);
+  if (acc.with_features) {
+    s.odd_rgb = std::move(acc.odd_rgb);
+    s.features = std::move(acc.features);
+  }
   return s;
 }
 
@@ -180,6 +185,14 @@ std::string identity_mismatch(const Accumulation& a, const Accumulation& b) {
         return "settings." + key + ": " + value.dump() + " vs " +
                (sb.contains(key) ? sb[key].dump() : std::string("(missing)"));
   return "settings: " + a.id.settings + " vs " + b.id.settings;
+}
+
+std::string mixed_features(const std::vector<NamedAccumulation>& parts) {
+  const NamedAccumulation* with = nullptr;
+  const NamedAccumulation* without = nullptr;
+  for (const NamedAccumulation& p : parts) (p.acc.with_features ? with : without) = &p;
+  if (!with || !without) return {};
+  return without->name + " keeps no feature buffers (" + with->name + " does)";
 }
 
 Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order) {
@@ -219,6 +232,7 @@ Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector
   out.width = parts[0].acc.width;
   out.height = parts[0].acc.height;
   out.id = parts[0].acc.id;
+  out.with_features = mixed_features(parts).empty() && parts[0].acc.with_features;
   for (const auto& p : parts) out.counters += p.acc.counters;
   // The union of the ranges, touching ones joined.
   for (const Owned& o : all) {
@@ -230,26 +244,41 @@ Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector
   return out;
 }
 
-void add_sums(Accumulation& into, std::size_t first, std::size_t pixels, const double* sum,
-              const double* sum_sq) {
+namespace {
+
+// to[k] += from[k] for k < n: the one addition of every fold.
+void add_to(std::vector<double>& to, std::size_t at, const double* from, std::size_t n) {
+  double* t = to.data() + at;
+  for (std::size_t k = 0; k < n; ++k) t[k] += from[k];
+}
+
+}  // namespace
+
+void add_sums(Accumulation& into, const SumsBand& band) {
   const std::size_t all = std::size_t(into.width) * std::size_t(into.height);
   if (into.sum.empty()) {  // the first part: the fold starts from zero
     into.sum.assign(all * 3, 0.0);
     into.sum_sq.assign(all, 0.0);
+    into.odd_rgb.assign(into.with_features ? all * 3 : 0, 0.0);
+    into.features.assign(into.with_features ? all * kFeatureSums : 0, 0.0);
   }
-  if (first > all || pixels > all - first)
+  if (band.first > all || band.pixels > all - band.first)
     throw AccumulationError("a part's sums are not of the merge's size");
-  double* s = into.sum.data() + first * 3;
-  double* q = into.sum_sq.data() + first;
-  for (std::size_t k = 0; k < pixels * 3; ++k) s[k] += sum[k];
-  for (std::size_t k = 0; k < pixels; ++k) q[k] += sum_sq[k];
+  add_to(into.sum, band.first * 3, band.sum, band.pixels * 3);
+  add_to(into.sum_sq, band.first, band.sum_sq, band.pixels);
+  if (!into.with_features) return;
+  if (!band.odd_rgb || !band.features) throw AccumulationError("a part keeps no feature buffers");
+  add_to(into.odd_rgb, band.first * 3, band.odd_rgb, band.pixels * 3);
+  add_to(into.features, band.first * kFeatureSums, band.features, band.pixels * kFeatureSums);
 }
 
 void add_sums(Accumulation& into, const Accumulation& part) {
   const std::size_t pixels = std::size_t(into.width) * std::size_t(into.height);
   if (part.sum.size() != pixels * 3 || part.sum_sq.size() != pixels)
     throw AccumulationError("a part's sums are not of the merge's size");
-  add_sums(into, 0, pixels, part.sum.data(), part.sum_sq.data());
+  const bool features = part.odd_rgb.size() == pixels * 3 && part.features.size() == pixels * kFeatureSums;
+  add_sums(into, {0, pixels, part.sum.data(), part.sum_sq.data(), features ? part.odd_rgb.data() : nullptr,
+                  features ? part.features.data() : nullptr});
 }
 
 Accumulation merge_accumulations(std::vector<NamedAccumulation> parts) {

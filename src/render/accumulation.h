@@ -59,6 +59,12 @@ struct Accumulation {
   int width = 0, height = 0;
   std::vector<double> sum;     // RGB sums, width*height*3, row 0 = top
   std::vector<double> sum_sq;  // luminance sums of squares, width*height
+  // With the denoiser's feature buffers (Snapshot::odd_rgb and features,
+  // summed over the same samples as `sum`, in the same order); a header
+  // read alone says so with the sums empty. Without: false, both empty.
+  bool with_features = false;
+  std::vector<double> odd_rgb;   // 3 a pixel
+  std::vector<double> features;  // kFeatureSums a pixel
   std::vector<SampleRange> ranges;  // sorted and disjoint
   RenderCounters counters;          // summed over parts
   RenderIdentity id;
@@ -73,8 +79,9 @@ struct AccumulationError : std::runtime_error {
 // The accumulation of a snapshot whose samples start at `first_sample`.
 Accumulation accumulation_of(const Snapshot& snap, std::uint64_t first_sample,
                              const RenderIdentity& id);
-// A snapshot of an accumulation, so mean_image and the stats see it as they
-// see a render. The second takes the sums over instead of copying them.
+// A snapshot of an accumulation, so mean_image, the stats and the denoiser
+// see it as they see a render (its feature sums, and its first sample,
+// which says which samples are odd). The second takes the sums over instead of copying them.
 Snapshot snapshot_of(const Accumulation& acc);
 Snapshot snapshot_of(Accumulation&& acc);
 
@@ -88,7 +95,11 @@ struct NamedAccumulation {
   std::string name;
   Accumulation acc;
 };
-// Folds the parts' sums in the order of their ranges. Throws
+// "" if every part keeps feature buffers or none does; else a line naming a
+// part with them and one without (a merge of both keeps none).
+std::string mixed_features(const std::vector<NamedAccumulation>& parts);
+// Folds the parts' sums in the order of their ranges (their features too
+// when every part has them). Throws
 // AccumulationError naming the files and the differing field, or the two
 // overlapping ranges.
 Accumulation merge_accumulations(std::vector<NamedAccumulation> parts);
@@ -96,13 +107,23 @@ Accumulation merge_accumulations(std::vector<NamedAccumulation> parts);
 // time: plan_merge checks the parts' headers (their sums may be empty) and
 // returns the merged header with empty sums, and in `order` the order to add
 // the parts' sums in with add_sums (from zero, as merge_accumulations does).
+// The merged header keeps features when every part has them.
 Accumulation plan_merge(const std::vector<NamedAccumulation>& parts, std::vector<std::size_t>& order);
 void add_sums(Accumulation& into, const Accumulation& part);
-// Adds the sums of `pixels` pixels from pixel `first` on (row-major): `sum`
-// holds 3 per pixel, `sum_sq` one. Each element's addition is the one
-// add_sums makes, so adding a part band by band gives the same bits.
-void add_sums(Accumulation& into, std::size_t first, std::size_t pixels, const double* sum,
-              const double* sum_sq);
+// The sums of `pixels` pixels from pixel `first` on (row-major): 3 a pixel
+// in `sum` and `odd_rgb`, one in `sum_sq`, kFeatureSums in `features`
+// (odd_rgb and features null for a part without feature buffers).
+struct SumsBand {
+  std::size_t first = 0, pixels = 0;
+  const double* sum = nullptr;
+  const double* sum_sq = nullptr;
+  const double* odd_rgb = nullptr;
+  const double* features = nullptr;
+};
+// Adds a band. Each element's addition is the one add_sums makes, so adding
+// a part band by band gives the same bits. The features are added when
+// `into` keeps them (the band must then have them).
+void add_sums(Accumulation& into, const SumsBand& band);
 // The ranges missing from [0, last end): the gaps between `ranges`.
 std::vector<SampleRange> missing_ranges(const std::vector<SampleRange>& ranges);
 

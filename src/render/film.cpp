@@ -101,6 +101,7 @@ void Film::reset(int width, int height, bool features) {
   acc_odd_.assign(pixels, 0.0);
   halves_known_ = true;
   features_ = features;
+  features_known_ = true;
   odd_rgb_.assign(features ? pixels * 3 : 0, 0.0);
   features_sum_.assign(features ? pixels * kFeatureSums : 0, 0.0);
 }
@@ -114,14 +115,24 @@ void Film::publish(Snapshot& s) const {
     s.odd_sum = acc_odd_;
   else
     s.odd_sum.clear();
-  s.odd_rgb = halves_known_ ? odd_rgb_ : std::vector<double>();
-  s.features = halves_known_ ? features_sum_ : std::vector<double>();
+  s.odd_rgb = features_known_ ? odd_rgb_ : std::vector<double>();
+  s.features = features_known_ ? features_sum_ : std::vector<double>();
 }
 
 void Film::load(const std::vector<double>& sum, const std::vector<double>& sum_sq) {
   if (sum.size() == acc_.size()) acc_ = sum;
   if (sum_sq.size() == acc_sq_.size()) acc_sq_ = sum_sq;
   halves_known_ = false;
+  features_known_ = false;
+}
+
+void Film::load(const std::vector<double>& sum, const std::vector<double>& sum_sq,
+                const std::vector<double>& odd_rgb, const std::vector<double>& features) {
+  load(sum, sum_sq);
+  if (!features_ || odd_rgb.size() != odd_rgb_.size() || features.size() != features_sum_.size()) return;
+  odd_rgb_ = odd_rgb;
+  features_sum_ = features;
+  features_known_ = true;
 }
 
 }  // namespace whisker

@@ -185,6 +185,12 @@ class Film {
   // Starts from these sums (a resumed render); sizes must match the film's.
   // The half images are then unknown: the scale figures say so.
   void load(const std::vector<double>& sum, const std::vector<double>& sum_sq);
+  // The same, and a part's feature sums (Accumulation::odd_rgb, features):
+  // a film reset with features goes on keeping them, exactly as the render
+  // never stopped would (the luminance halves stay unknown). Without
+  // features, or sums not of the film's size, as the load above.
+  void load(const std::vector<double>& sum, const std::vector<double>& sum_sq,
+            const std::vector<double>& odd_rgb, const std::vector<double>& features);
 
  private:
   int width_ = 0, height_ = 0;
@@ -193,6 +199,7 @@ class Film {
   std::vector<double> acc_odd_; // luminance sums of the odd-indexed samples
   bool halves_known_ = true;    // false once loaded from a part
   bool features_ = false;
+  bool features_known_ = true;  // false once loaded from a part without its feature sums
   std::vector<double> odd_rgb_, features_sum_;  // with features_
 };
 

@@ -882,6 +882,47 @@ PY
     done
     [ ! -e m.png ] && [ ! -e r.exr ] || fail "a damaged part was merged or resumed"
     ;;
+  part-features-checked)
+    # A part's feature layers (--features): a half missing, a layer of
+    # another type, layers that say they hold other samples than the part,
+    # layers without the attribute that says which. Each refused in one
+    # line naming the file and the layer, by a merge and by a resume.
+    have_exr || skip "this build has no OpenEXR"
+    scene 16 16
+    run --headless --scene scene.json --quiet --frames 2 --features --out-sum p.exr
+    expect_rc 0
+    run merge p.exr --out-denoised d.png
+    expect_rc 0
+    rm -f d.png
+    python3 - <<'PY' || fail "could not craft the parts"
+import struct
+d = open('p.exr', 'rb').read()
+def swap(name, old, new):
+    assert d.count(old) == 1, old
+    open(name, 'wb').write(d.replace(old, new))
+swap('half.exr', b'feature.odd.albedo.G.lo\0', b'feature.odd.albedo.G.xx\0')
+k = d.index(b'feature.depth.Z.hi\0') + len(b'feature.depth.Z.hi\0')
+half = bytearray(d)
+struct.pack_into('<i', half, k, 1)   # pixel type 1 = HALF
+open('type.exr', 'wb').write(half)
+swap('count.exr', b'whisker.features\0string\0\3\0\0\0' + b'0:2', b'whisker.features\0string\0\3\0\0\0' + b'0:1')
+swap('bare.exr', b'whisker.features\0', b'whisker.featurez\0')
+PY
+    for c in "half:channel feature.odd.albedo.G.lo missing" \
+             "type:channel feature.depth.Z.hi is HALF, not UINT" \
+             "count:whisker.features \"0:1\": the feature layers hold other samples than the part's 0:2" \
+             "bare:channel odd.sum.R.hi without whisker.features"; do
+      f=${c%%:*}.exr
+      run merge "$f" --out m.png --out-denoised d.png
+      expect_rc 2
+      expect_err "^whisker: $f: ${c#*:}"
+      [ "$(wc -l <err.txt)" -eq 1 ] || fail "merge $f: $(cat err.txt)"
+      run --headless --scene scene.json --quiet --frames 2 --resume "$f" --out-sum r.exr
+      expect_rc 2
+      expect_err "^whisker: --resume $f: ${c#*:}"
+    done
+    [ ! -e m.png ] && [ ! -e d.png ] && [ ! -e r.exr ] || fail "a part with damaged feature layers was merged or resumed"
+    ;;
   scene-parse-linear)
     # The duplicate-key check rescanned the enclosing array at the end of
     # each object in it: 400,000 objects took 44 s, a file at the cap weeks.

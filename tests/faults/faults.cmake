@@ -15,7 +15,7 @@ set(WHISKER_FAULT_CASES
   mesh-option-needs-meshes output-extensions scene-duplicate-keys camera-up-degenerate
   non-utf8-names obj-bad-normals accumulation-damaged-header checkpoint-warns-once
   input-slips thread-creation-fails stop-within-a-long-pass temp-files-unpredictable
-  closed-standard-descriptors memory-bounds part-contents-checked
+  closed-standard-descriptors memory-bounds part-contents-checked part-features-checked
   scene-parse-linear scene-nesting-capped messages-escaped list-options-one-reader
   obj-memory-bounded)
 foreach(c ${WHISKER_FAULT_CASES})

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "fuzz_common.h"
 #include "io/accumulation_io.h"
@@ -36,6 +37,13 @@ void check(const whisker::Accumulation& a, bool with_sums) {
     if (!std::isfinite(v) || v < 0) __builtin_trap();
   for (const double v : a.sum_sq)
     if (!std::isfinite(v) || v < 0) __builtin_trap();
+  // Feature sums: all of them or none, each finite (part_layers.h).
+  const bool features = a.odd_rgb.size() == pixels * 3 && a.features.size() == pixels * whisker::kFeatureSums;
+  if (features != a.with_features || (!features && (!a.odd_rgb.empty() || !a.features.empty()))) __builtin_trap();
+  for (std::size_t k = 0; k < a.odd_rgb.size(); ++k)
+    if (!std::isfinite(a.odd_rgb[k]) || a.odd_rgb[k] < 0 || a.odd_rgb[k] > a.sum[k]) __builtin_trap();
+  for (const double v : a.features)
+    if (!std::isfinite(v)) __builtin_trap();
 }
 
 // Puts the CRC a checksum refusal names ("... does not match its checksum
@@ -56,10 +64,13 @@ bool reseal(std::string& bytes, const std::string& refusal) {
   return true;
 }
 
+bool same_doubles(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
 bool same_sums(const whisker::Accumulation& a, const whisker::Accumulation& b) {
-  return a.sum.size() == b.sum.size() && a.sum_sq.size() == b.sum_sq.size() &&
-         std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)) == 0 &&
-         std::memcmp(a.sum_sq.data(), b.sum_sq.data(), a.sum_sq.size() * sizeof(double)) == 0;
+  return same_doubles(a.sum, b.sum) && same_doubles(a.sum_sq, b.sum_sq) && same_doubles(a.odd_rgb, b.odd_rgb) &&
+         same_doubles(a.features, b.features);
 }
 
 // Reads the part at `path` every way; returns the last refusal ("" if none).
