@@ -24,22 +24,31 @@ void parallel_rows(int rows, int threads, const std::function<void(int, int)>& f
 }
 
 std::vector<float> box_mean(const std::vector<float>& v, int w, int h, int radius) {
-  // Separable: rows, then columns, each dividing by the count inside.
-  std::vector<float> tmp(v.size()), out(v.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0.0;
-      const int x0 = std::max(0, x - radius), x1 = std::min(w - 1, x + radius);
-      for (int i = x0; i <= x1; ++i) s += v[std::size_t(y) * std::size_t(w) + std::size_t(i)];
-      tmp[std::size_t(y) * std::size_t(w) + std::size_t(x)] = float(s / double(x1 - x0 + 1));
+  // Separable: columns, then rows, each dividing by the count inside; each
+  // pass sums whole lines (loops the compiler vectorises). At most
+  // (2 radius + 1) terms a pass: float sums are within a few ulp.
+  std::vector<float> tmp(v.size()), out(v.size(), 0.0f);
+  const std::size_t sw = std::size_t(w);
+  for (int y = 0; y < h; ++y) {
+    const int y0 = std::max(0, y - radius), y1 = std::min(h - 1, y + radius);
+    float* t = &tmp[std::size_t(y) * sw];
+    std::copy_n(&v[std::size_t(y0) * sw], sw, t);
+    for (int i = y0 + 1; i <= y1; ++i) {
+      const float* src = &v[std::size_t(i) * sw];
+      for (int x = 0; x < w; ++x) t[x] += src[x];
     }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0.0;
-      const int y0 = std::max(0, y - radius), y1 = std::min(h - 1, y + radius);
-      for (int i = y0; i <= y1; ++i) s += tmp[std::size_t(i) * std::size_t(w) + std::size_t(x)];
-      out[std::size_t(y) * std::size_t(w) + std::size_t(x)] = float(s / double(y1 - y0 + 1));
-    }
+    const float n = float(y1 - y0 + 1);
+    for (int x = 0; x < w; ++x) t[x] /= n;
+  }
+  std::vector<float> count(sw);
+  for (int x = 0; x < w; ++x) count[std::size_t(x)] = float(std::min(w - 1, x + radius) - std::max(0, x - radius) + 1);
+  for (int y = 0; y < h; ++y) {
+    const float* t = &tmp[std::size_t(y) * sw];
+    float* o = &out[std::size_t(y) * sw];
+    for (int j = -radius; j <= radius; ++j)
+      for (int x = std::max(0, -j); x < std::min(w, w - j); ++x) o[x] += t[x + j];
+    for (int x = 0; x < w; ++x) o[x] /= count[std::size_t(x)];
+  }
   return out;
 }
 
@@ -126,7 +135,13 @@ Prepared prepare(const DenoiseInput& in, int threads) {
   // 4.2: spatially): the squared residual from the 3 x 3 mean (times 9/8,
   // the residual's share of a pixel's variance), averaged over 7 x 7. From
   // the half alone, so that neither filtered half depends on the other.
+  // Both halves one image (denoise() filters each alone): computed once.
+  const bool same = same_halves(in);
   for (int half = 0; half < 2; ++half) {
+    if (half == 1 && same) {
+      for (int y = 0; y < h; ++y) std::copy_n(p.streams.at(kVa, y, 0), w, p.streams.at(kVb, y, 0));
+      break;
+    }
     std::vector<float> residual(std::size_t(w) * std::size_t(h), 0.0f);
     for (int c = 0; c < 3; ++c) {
       const std::vector<float> local = box_mean(channel[half][c], w, h, 1);
@@ -169,26 +184,6 @@ struct Level {
   const AtrousParams& params;
 };
 
-struct Pixel8 {
-  __m256 n[3], a[3], z, gx, gy, xa[3], xb[3], va, vb;
-};
-
-Pixel8 load_pixel(const Level& L, int y, int x) {
-  Pixel8 p;
-  for (int c = 0; c < 3; ++c) {
-    p.n[c] = load8(L.f.at(kNx + c, y, x));
-    p.a[c] = load8(L.f.at(kAr + c, y, x));
-    p.xa[c] = load8(L.in.at(kXa + c, y, x));
-    p.xb[c] = load8(L.in.at(kXb + c, y, x));
-  }
-  p.z = load8(L.f.at(kDepth, y, x));
-  p.gx = load8(L.f.at(kGradX, y, x));
-  p.gy = load8(L.f.at(kGradY, y, x));
-  p.va = load8(L.in.at(kVa, y, x));
-  p.vb = load8(L.in.at(kVb, y, x));
-  return p;
-}
-
 inline __m256 abs8(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v); }
 
 // One level at 8 pixels of row y from column x: each half's colour and
@@ -196,53 +191,77 @@ inline __m256 abs8(__m256 v) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v)
 // halves' features); with kBoth false half a alone (half b the same).
 template <bool kBoth>
 void atrous_pixels(const Level& L, int y, int x) {
-  const Pixel8 p = load_pixel(L, y, x);
   const AtrousParams& k = L.params;
+  // The planes of one pixel lie a plane apart: offsets from plane 0's.
+  const std::ptrdiff_t fp = L.f.at(1, 0, 0) - L.f.at(0, 0, 0), sp = L.in.at(1, 0, 0) - L.in.at(0, 0, 0);
+  const float* f = L.f.at(0, y, x);
+  const float* s = L.in.at(0, y, x);
+  __m256 pn[3], pa[3], pxa[3], pxb[3];
+  for (int c = 0; c < 3; ++c) {
+    pn[c] = load8(f + (kNx + c) * fp);
+    pa[c] = load8(f + (kAr + c) * fp);
+    pxa[c] = load8(s + (kXa + c) * sp);
+    if constexpr (kBoth) pxb[c] = load8(s + (kXb + c) * sp);
+  }
+  const __m256 pz = load8(f + kDepth * fp), pva = load8(s + kVa * sp);
+  // The depth's tolerance depends on the tap only through |kx| and |ky|:
+  // its reciprocal for the 3 x 3 of them, here once.
+  const __m256 base = 1e-3f * pz + 1e-6f;
+  const __m256 tx = (k.depth * float(L.step)) * load8(f + kGradX * fp);
+  const __m256 ty = (k.depth * float(L.step)) * load8(f + kGradY * fp);
+  __m256 rtol[3][3];
+  for (int ay = 0; ay < 3; ++ay)
+    for (int ax = 0; ax < 3; ++ax) rtol[ay][ax] = 1.0f / (tx * float(ax) + ty * float(ay) + base);
   const float c2 = k.colour * k.colour;
   constexpr float kEps = 1e-14f;  // a noise-free image (variance 0) is left as it is
+  const __m256 c2va = c2 * pva + kEps;
+  __m256 c2vb = c2va;
+  if constexpr (kBoth) c2vb = c2 * load8(s + kVb * sp) + kEps;
   __m256 swa = _mm256_setzero_ps(), swb = swa, wva = swa, wvb = swa;
   __m256 sa[3] = {swa, swa, swa}, sb[3] = {swa, swa, swa};
-  for (int ky = -2; ky <= 2; ++ky)
+  for (int ky = -2; ky <= 2; ++ky) {
+    const float* fr = L.f.at(0, y + ky * L.step, x);
+    const float* sr = L.in.at(0, y + ky * L.step, x);
     for (int kx = -2; kx <= 2; ++kx) {
-      const int qy = y + ky * L.step, qx = x + kx * L.step;
+      const float* fq = fr + kx * L.step;
+      const float* sq = sr + kx * L.step;
       __m256 dn = _mm256_setzero_ps(), da = dn, dca = dn, dcb = dn;
       __m256 xa[3], xb[3];
       for (int c = 0; c < 3; ++c) {
-        const __m256 n = p.n[c] - load8(L.f.at(kNx + c, qy, qx));
-        const __m256 a = p.a[c] - load8(L.f.at(kAr + c, qy, qx));
-        xa[c] = load8(L.in.at(kXa + c, qy, qx));
-        const __m256 ea = p.xa[c] - xa[c];
+        const __m256 n = pn[c] - load8(fq + (kNx + c) * fp);
+        const __m256 a = pa[c] - load8(fq + (kAr + c) * fp);
+        xa[c] = load8(sq + (kXa + c) * sp);
+        const __m256 ea = pxa[c] - xa[c];
         dn += n * n;
         da += a * a;
         dca += ea * ea;
         if constexpr (kBoth) {
-          xb[c] = load8(L.in.at(kXb + c, qy, qx));
-          const __m256 eb = p.xb[c] - xb[c];
+          xb[c] = load8(sq + (kXb + c) * sp);
+          const __m256 eb = pxb[c] - xb[c];
           dcb += eb * eb;
         }
       }
-      const __m256 va = load8(L.in.at(kVa, qy, qx));
-      const __m256 tol = k.depth * (p.gx * float(std::abs(kx * L.step)) + p.gy * float(std::abs(ky * L.step))) +
-                         1e-3f * p.z + 1e-6f;
-      const __m256 dz = abs8(p.z - load8(L.f.at(kDepth, qy, qx))) / tol;
+      const __m256 va = load8(sq + kVa * sp);
+      const __m256 dz = abs8(pz - load8(fq + kDepth * fp)) * rtol[std::abs(ky)][std::abs(kx)];
       const __m256 feature = k.normal * dn + k.albedo * da + dz;
-      const __m256 h = kB3[ky + 2] * kB3[kx + 2] * load8(L.f.at(kInside, qy, qx));
+      const __m256 h = kB3[ky + 2] * kB3[kx + 2] * load8(fq + kInside * fp);
       // Each half weighted by its own colour (so that neither depends on the
       // other's values: the error estimate compares each with the other).
-      const __m256 ca = dca / (c2 * (p.va + va) + kEps);
+      const __m256 ca = dca / (c2 * va + c2va);
       const __m256 wa = h * exp_negative(-(feature + ca));
       for (int c = 0; c < 3; ++c) sa[c] += wa * xa[c];
       swa += wa;
       wva += wa * wa * va;
       if constexpr (kBoth) {
-        const __m256 vb = load8(L.in.at(kVb, qy, qx));
-        const __m256 cb = dcb / (c2 * (p.vb + vb) + kEps);
+        const __m256 vb = load8(sq + kVb * sp);
+        const __m256 cb = dcb / (c2 * vb + c2vb);
         const __m256 wb = h * exp_negative(-(feature + cb));
         for (int c = 0; c < 3; ++c) sb[c] += wb * xb[c];
         swb += wb;
         wvb += wb * wb * vb;
       }
     }
+  }
   const __m256 tiny = _mm256_set1_ps(1e-30f);
   swa = _mm256_max_ps(swa, tiny);
   for (int c = 0; c < 3; ++c) store8(L.out.at(kXa + c, y, x), sa[c] / swa);
