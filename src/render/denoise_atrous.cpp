@@ -60,43 +60,46 @@ namespace {
 // that is nearly so would be amplified past its use.
 constexpr float kAlbedoFloor = 0.01f;
 
-// The mean depth of the two halves, row-major.
-struct DepthMap {
-  std::vector<float> z;
-  int w = 0, h = 0;
-  float at(int x, int y) const { return z[std::size_t(y) * std::size_t(w) + std::size_t(x)]; }
-};
-
-// The smaller of the depth's differences to the two neighbours along x (or
-// y): one across an edge is large; the other then says the slope.
-float depth_slope(const DepthMap& d, int x, int y, bool along_x) {
-  const float c = d.at(x, y);
-  float best = INFINITY;
-  for (int s : {-1, 1}) {
-    const int qx = along_x ? x + s : x, qy = along_x ? y : y + s;
-    if (qx < 0 || qy < 0 || qx >= d.w || qy >= d.h) continue;
-    best = std::min(best, std::fabs(d.at(qx, qy) - c));
+// The smaller of the depth's differences to the two neighbours along a
+// line (n values `step` apart, from z): one across an edge is large; the
+// other then says the slope. At the line's ends, the one neighbour's.
+void depth_slopes(const float* z, std::size_t step, int n, float* out) {
+  if (n == 1) {
+    out[0] = 0.0f;
+    return;
   }
-  return std::isfinite(best) ? best : 0.0f;
+  out[0] = std::fabs(z[step] - z[0]);
+  for (int i = 1; i + 1 < n; ++i) {
+    const float c = z[std::size_t(i) * step];
+    out[i] = std::min(std::fabs(z[std::size_t(i - 1) * step] - c), std::fabs(z[std::size_t(i + 1) * step] - c));
+  }
+  out[n - 1] = std::fabs(z[std::size_t(n - 2) * step] - z[std::size_t(n - 1) * step]);
 }
 
 void prepare_features(const DenoiseInput& in, Prepared& p) {
   const int w = in.width, h = in.height;
-  DepthMap d{std::vector<float>(std::size_t(w) * std::size_t(h)), w, h};
-  std::vector<float>& z = d.z;
+  const std::size_t sw = std::size_t(w);
+  std::vector<float> z(sw * static_cast<std::size_t>(h)), slope(static_cast<std::size_t>(h));
   for (std::size_t i = 0; i < z.size(); ++i) z[i] = 0.5f * (in.depth_a[i] + in.depth_b[i]);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
-      for (int c = 0; c < 3; ++c) {
-        *p.features.at(kNx + c, y, x) = 0.5f * (in.normal_a[3 * i + std::size_t(c)] + in.normal_b[3 * i + std::size_t(c)]);
-        *p.features.at(kAr + c, y, x) = 0.5f * (in.albedo_a[3 * i + std::size_t(c)] + in.albedo_b[3 * i + std::size_t(c)]);
+  for (int y = 0; y < h; ++y) {
+    const std::size_t row = std::size_t(y) * sw;
+    for (int c = 0; c < 3; ++c) {
+      float* n = p.features.at(kNx + c, y, 0);
+      float* a = p.features.at(kAr + c, y, 0);
+      for (int x = 0; x < w; ++x) {
+        const std::size_t k = 3 * (row + std::size_t(x)) + std::size_t(c);
+        n[x] = 0.5f * (in.normal_a[k] + in.normal_b[k]);
+        a[x] = 0.5f * (in.albedo_a[k] + in.albedo_b[k]);
       }
-      *p.features.at(kDepth, y, x) = z[i];
-      *p.features.at(kGradX, y, x) = depth_slope(d, x, y, true);
-      *p.features.at(kGradY, y, x) = depth_slope(d, x, y, false);
-      *p.features.at(kInside, y, x) = 1.0f;
     }
+    std::copy_n(&z[row], w, p.features.at(kDepth, y, 0));
+    depth_slopes(&z[row], 1, w, p.features.at(kGradX, y, 0));
+    std::fill_n(p.features.at(kInside, y, 0), w, 1.0f);
+  }
+  for (int x = 0; x < w; ++x) {
+    depth_slopes(&z[std::size_t(x)], sw, h, slope.data());
+    for (int y = 0; y < h; ++y) *p.features.at(kGradY, y, x) = slope[std::size_t(y)];
+  }
 }
 
 }  // namespace
@@ -135,14 +138,22 @@ Prepared prepare(const DenoiseInput& in, int threads) {
       float* xa = p.streams.at(kXa + c, y, 0);
       float* xb = p.streams.at(kXb + c, y, 0);
       const std::size_t row = std::size_t(y) * std::size_t(w);
+      float* ca = &channel[0][c][row];
       for (int x = 0; x < w; ++x) {
-        const std::size_t i = row + std::size_t(x), k = 3 * i + std::size_t(c);
+        const std::size_t k = 3 * (row + std::size_t(x)) + std::size_t(c);
         const float m = (albedo[x] > kAlbedoFloor ? albedo[x] : 1.0f) * scale;
         p.modulation[k] = m;
-        xa[x] = channel[0][c][i] = in.colour_a[k] / m;
-        if (!same) xb[x] = channel[1][c][i] = in.colour_b[k] / m;
+        xa[x] = ca[x] = in.colour_a[k] / m;
       }
-      if (same) std::copy_n(xa, w, xb);
+      if (same) {
+        std::copy_n(xa, w, xb);
+        continue;
+      }
+      float* cb = &channel[1][c][row];
+      for (int x = 0; x < w; ++x) {
+        const std::size_t k = 3 * (row + std::size_t(x)) + std::size_t(c);
+        xb[x] = cb[x] = in.colour_b[k] / p.modulation[k];
+      }
     }
   // Each half's variance (summed over channels) from that half alone, as
   // SVGF estimates it where it has no history (Schied et al. 2017, section
