@@ -292,9 +292,9 @@ void atrous_pixels(const Level& L, int y, int x) {
   __m256 c2vb = c2va;
   if constexpr (kBoth) c2vb = c2 * load8(s + kVb * sp) + kEps;
   const __m256 psq = load8(g + kGsq * gp);
-  // In three passes over the taps, each of short chains of operations that
-  // do not depend on the other taps': the exponents, their exponentials,
-  // then the sums. The centre's weight is its tap weight alone.
+  // In two passes over the taps, each of short chains of operations that
+  // do not depend on the other taps': the exponents, then their
+  // exponentials and the sums. The centre's weight is its tap weight alone.
   constexpr int kSide = 2 * kRadius + 1, kTaps = kSide * kSide, kCentre = kTaps / 2;
   __m256 ea[kTaps], eb[kTaps];
 #pragma GCC unroll 25
@@ -326,25 +326,18 @@ void atrous_pixels(const Level& L, int y, int x) {
     ea[t] = feature - dca * _mm256_rcp_ps(c2 * load8(sq + kVa * sp) + c2va);
     if constexpr (kBoth) eb[t] = feature - dcb * _mm256_rcp_ps(c2 * load8(sq + kVb * sp) + c2vb);
   }
-#pragma GCC unroll 25
-  for (int t = 0; t < kTaps; ++t) {
-    if (t == kCentre) continue;
-    ea[t] = exp_weight(ea[t]);
-    if constexpr (kBoth) eb[t] = exp_weight(eb[t]);
-  }
-  ea[kCentre] = eb[kCentre] = _mm256_set1_ps(kB3[kRadius] * kB3[kRadius]);
   __m256 swa = _mm256_setzero_ps(), swb = swa, wva = swa, wvb = swa;
   __m256 sa[3] = {swa, swa, swa}, sb[3] = {swa, swa, swa};
 #pragma GCC unroll 25
   for (int t = 0; t < kTaps; ++t) {
     const int ky = t / kSide - kRadius, kx = t % kSide - kRadius;
     const float* sq = s + ky * kStep * ss + kx * kStep;
-    const __m256 wa = ea[t];
+    const __m256 wa = t == kCentre ? _mm256_set1_ps(kB3[kRadius] * kB3[kRadius]) : exp_weight(ea[t]);
     for (int c = 0; c < 3; ++c) sa[c] += wa * load8(sq + (kXa + c) * sp);
     swa += wa;
     wva += wa * wa * load8(sq + kVa * sp);
     if constexpr (kBoth) {
-      const __m256 wb = eb[t];
+      const __m256 wb = t == kCentre ? _mm256_set1_ps(kB3[kRadius] * kB3[kRadius]) : exp_weight(eb[t]);
       for (int c = 0; c < 3; ++c) sb[c] += wb * load8(sq + (kXb + c) * sp);
       swb += wb;
       wvb += wb * wb * load8(sq + kVb * sp);
