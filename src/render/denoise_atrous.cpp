@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <new>
 #include <stdexcept>
 #include <thread>
+
+#include <sys/mman.h>
 
 #include "render/denoise_planes.h"
 
@@ -23,6 +26,21 @@ void parallel_rows(int rows, int threads, const std::function<void(int, int)>& f
   fn(0, rows / n);
   for (std::thread& t : pool) t.join();
 }
+
+void* allocate_planes(std::size_t bytes) {
+  constexpr std::size_t kHuge = std::size_t(2) << 20;
+  if (bytes < 2 * kHuge) {
+    void* p = std::malloc(bytes);
+    if (!p) throw std::bad_alloc();
+    return p;
+  }
+  void* p = std::aligned_alloc(kHuge, (bytes + kHuge - 1) / kHuge * kHuge);
+  if (!p) throw std::bad_alloc();
+  madvise(p, bytes, MADV_HUGEPAGE);  // advice: without it, small pages
+  return p;
+}
+
+void free_planes(void* p) noexcept { std::free(p); }
 
 std::vector<float> box_mean(const std::vector<float>& v, int w, int h, int radius) {
   // Separable: columns, then rows, each dividing by the count inside; each

@@ -29,9 +29,17 @@ inline constexpr int kMargin = 32;
 // Planes lie `plane` floats apart, a multiple of 4 KiB plus 5 cache lines:
 // the same pixel of a dozen planes then falls in different sets of the
 // cache, not all in one (which holds 8 lines).
-// An allocator that leaves floats uninitialised (Planes says what is zero).
+// Memory of at least 4 MiB in huge pages where the system gives them
+// (2 MiB each: a plane's taps rows apart then share a few TLB entries, and
+// the first touch faults once a huge page), else as new[] would.
+void* allocate_planes(std::size_t bytes);
+void free_planes(void* p) noexcept;
+
+// An allocator that leaves floats uninitialised (Planes says what is zero),
+// from allocate_planes().
 template <class T>
 struct UninitAllocator : std::allocator<T> {
+  using value_type = T;
   template <class U>
   struct rebind {
     using other = UninitAllocator<U>;
@@ -39,6 +47,8 @@ struct UninitAllocator : std::allocator<T> {
   UninitAllocator() = default;
   template <class U>
   UninitAllocator(const UninitAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocate_planes(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) noexcept { free_planes(p); }
   template <class U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;
