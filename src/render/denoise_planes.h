@@ -23,15 +23,9 @@ namespace whisker::denoising {
 // The widest tap offset any filter takes, pixels.
 inline constexpr int kMargin = 32;
 
-// `count` planes of a w x h image, each with kMargin pixels of zeros on
-// every side and rows padded to a multiple of 8 pixels, so that 8 pixels of
-// a row and their neighbours up to kMargin away load without bounds checks.
-// Planes lie `plane` floats apart, a multiple of 4 KiB plus 5 cache lines:
-// the same pixel of a dozen planes then falls in different sets of the
-// cache, not all in one (which holds 8 lines).
 // Memory of at least 4 MiB in huge pages where the system gives them
 // (2 MiB each: a plane's taps rows apart then share a few TLB entries, and
-// the first touch faults once a huge page), else as new[] would.
+// the first touch faults once a huge page), else from malloc.
 void* allocate_planes(std::size_t bytes);
 void free_planes(void* p) noexcept;
 
@@ -59,6 +53,12 @@ struct UninitAllocator : std::allocator<T> {
   }
 };
 
+// `count` planes of a w x h image, each with kMargin pixels of zeros on
+// every side and rows padded to a multiple of 8 pixels, so that 8 pixels of
+// a row and their neighbours up to kMargin away load without bounds checks.
+// Planes lie `plane` floats apart, a multiple of 4 KiB plus 5 cache lines:
+// the same pixel of a dozen planes then falls in different sets of the
+// cache, not all in one (which holds 8 lines).
 struct Planes {
   int w = 0, h = 0, count = 0;
   std::size_t stride = 0, rows = 0, plane = 0;
