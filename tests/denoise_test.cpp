@@ -1,8 +1,9 @@
 // The denoiser (render/denoise.h) on closed-form images: noise-free and
 // constant images are left as they are, albedo and normal step edges stay
 // sharp, the coarse band is the raw image's, the error estimate (bias
-// included) is near the true error on images of known noise and bias, and
-// bad input is refused with a message.
+// included) is near the true error on images of known noise and bias, the
+// result is the same on any number of threads, images smaller than the
+// taps are filtered, and bad input is refused with a message.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <functional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/denoise.h"
@@ -308,6 +310,38 @@ TEST(Denoise, CoarseBandIsTheRawImages) {
       EXPECT_LT(out_err, 1.1 * raw_err) << name(f) << " at " << k << " px";
     }
     EXPECT_LT(mse_at(r.rgb, truth, img.w, img.h, 1), 0.5 * mse_at(raw, truth, img.w, img.h, 1)) << name(f);
+  }
+}
+
+// The two halves are filtered side by side, each on its share of the
+// threads and its rows in bands: the result is the same, value for value,
+// on any number of threads.
+TEST(Denoise, ResultDoesNotDependOnTheThreadCount) {
+  Halves img(45, 37);
+  add_noise(img, shadowed_gradient(img), 0.2f, 31);
+  for (DenoiseFilter f : kFilters) {
+    const DenoiseResult one = denoise(img.input(), {f, 1});
+    for (int threads : {2, 3, 5}) {
+      const DenoiseResult r = denoise(img.input(), {f, threads});
+      EXPECT_EQ(r.rgb, one.rgb) << name(f) << " on " << threads << " threads";
+      EXPECT_EQ(r.mse, one.mse) << name(f) << " on " << threads << " threads";
+    }
+  }
+}
+
+// Images smaller than the filters' reach, one pixel wide or tall among
+// them (the taps past the edge weigh nothing): a constant image stays
+// constant, a noisy one comes out finite.
+TEST(Denoise, ImagesSmallerThanTheTapsAreFiltered) {
+  for (const auto& [w, h] : {std::pair{1, 1}, std::pair{1, 6}, std::pair{7, 1}, std::pair{9, 3}}) {
+    Halves img(w, h);
+    const std::vector<float> flat(img.a.size(), 0.5f);
+    img.a = img.b = flat;
+    for (DenoiseFilter f : kFilters)
+      for (float v : denoise(img.input(), {f, 2}).rgb) ASSERT_NEAR(v, 0.5f, 0.5e-6f) << name(f) << " " << w << " x " << h;
+    add_noise(img, flat, 0.2f, 3);
+    for (DenoiseFilter f : kFilters)
+      for (float v : denoise(img.input(), {f, 2}).rgb) ASSERT_TRUE(std::isfinite(v)) << name(f) << " " << w << " x " << h;
   }
 }
 

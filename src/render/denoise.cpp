@@ -1,8 +1,11 @@
 #include "render/denoise.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <exception>
 #include <string>
 #include <thread>
 
@@ -23,6 +26,13 @@ void check_buffer(std::span<const float> v, const char* name, const DenoiseInput
     throw DenoiseError("denoise: " + std::string(name) + " has " + std::to_string(v.size()) +
                        " values, expected " + std::to_string(want) + " (" + std::to_string(in.width) +
                        " x " + std::to_string(in.height) + " x " + std::to_string(per_pixel) + ")");
+  // A value is not finite when its exponent bits are all set: OR of those
+  // tests over the buffer (a loop the compiler vectorises), then the search
+  // for the pixel only when one is.
+  constexpr std::uint32_t kExponent = 0x7f800000u;
+  std::uint32_t bad = 0;
+  for (const float x : v) bad |= std::uint32_t((std::bit_cast<std::uint32_t>(x) & kExponent) == kExponent);
+  if (!bad) return;
   for (std::size_t k = 0; k < v.size(); ++k)
     if (!std::isfinite(v[k])) {
       const std::size_t p = k / std::size_t(per_pixel);
@@ -85,26 +95,40 @@ void gaussian(std::vector<float>& v, int w, int h, float sigma) {
   const int r = int(std::ceil(3.0f * sigma));
   std::vector<float> taps(std::size_t(2 * r + 1));
   for (int i = -r; i <= r; ++i) taps[std::size_t(i + r)] = std::exp(-0.5f * float(i * i) / (sigma * sigma));
-  std::vector<float> tmp(v.size());
-  auto pass = [&](const std::vector<float>& src, std::vector<float>& dst, bool along_x) {
-    const int n = along_x ? w : h, lines = along_x ? h : w;
-    const std::size_t step = along_x ? 1 : std::size_t(w), line_step = along_x ? std::size_t(w) : 1;
-    for (int l = 0; l < lines; ++l) {
-      const std::size_t base = std::size_t(l) * line_step;
-      for (int i = 0; i < n; ++i) {
-        const int i0 = std::max(0, i - r), i1 = std::min(n - 1, i + r);
-        float s = 0.0f, ws = 0.0f;
-        for (int j = i0; j <= i1; ++j) {
-          const float t = taps[std::size_t(j - i + r)];
-          s += t * src[base + std::size_t(j) * step];
-          ws += t;
-        }
-        dst[base + std::size_t(i) * step] = s / ws;
-      }
+  // The taps' weight inside the image at each of n positions.
+  auto inside = [&](int n) {
+    std::vector<float> ws(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      float s = 0.0f;
+      for (int j = std::max(0, i - r); j <= std::min(n - 1, i + r); ++j) s += taps[std::size_t(j - i + r)];
+      ws[std::size_t(i)] = s;
     }
+    return ws;
   };
-  pass(v, tmp, true);
-  pass(tmp, v, false);
+  const std::vector<float> wx = inside(w), wy = inside(h);
+  // Each pass a sum of shifted lines, tap by tap (loops over whole lines,
+  // which the compiler vectorises), then divided by the weight inside.
+  std::vector<float> tmp(v.size(), 0.0f);
+  for (int y = 0; y < h; ++y) {
+    const float* src = &v[std::size_t(y) * std::size_t(w)];
+    float* dst = &tmp[std::size_t(y) * std::size_t(w)];
+    for (int j = -r; j <= r; ++j) {
+      const float t = taps[std::size_t(j + r)];
+      for (int x = std::max(0, -j); x < std::min(w, w - j); ++x) dst[x] += t * src[x + j];
+    }
+    for (int x = 0; x < w; ++x) dst[x] /= wx[std::size_t(x)];
+  }
+  for (int y = 0; y < h; ++y) {
+    float* dst = &v[std::size_t(y) * std::size_t(w)];
+    std::fill(dst, dst + w, 0.0f);
+    for (int j = std::max(-r, -y); j <= std::min(r, h - 1 - y); ++j) {
+      const float t = taps[std::size_t(j + r)];
+      const float* src = &tmp[std::size_t(y + j) * std::size_t(w)];
+      for (int x = 0; x < w; ++x) dst[x] += t * src[x];
+    }
+    const float inv = wy[std::size_t(y)];
+    for (int x = 0; x < w; ++x) dst[x] /= inv;
+  }
 }
 
 // The filtered half f's coarse band replaced by the raw half's:
@@ -159,8 +183,8 @@ DenoiseResult denoise(const DenoiseInput& in, const DenoiseOptions& options) {
   // Each half alone, its colour and its own features given as both halves:
   // then nothing of the other half (not even its features, whose edges move
   // with its colour's) reaches it, and estimate_error may compare the two.
-  std::vector<float> unused;
-  for (int half = 0; half < 2; ++half) {
+  // With two threads or more, the halves side by side, each on half of them.
+  auto filter_half = [&](int half, int half_threads) {
     DenoiseInput one = in;
     if (half == 0) {
       one.colour_b = in.colour_a, one.albedo_b = in.albedo_a, one.normal_b = in.normal_a, one.depth_b = in.depth_a;
@@ -168,12 +192,34 @@ DenoiseResult denoise(const DenoiseInput& in, const DenoiseOptions& options) {
       one.colour_a = in.colour_b, one.albedo_a = in.albedo_b, one.normal_a = in.normal_b, one.depth_a = in.depth_b;
     }
     std::vector<float>& filtered = half == 0 ? out.rgb_a : out.rgb_b;
+    std::vector<float> unused;
     if (options.filter == DenoiseFilter::Quality)
-      denoising::regression_filter(one, threads, filtered, unused);
+      denoising::regression_filter(one, half_threads, filtered, unused);
     else
-      denoising::atrous_filter(one, threads, filtered, unused);
+      denoising::atrous_filter(one, half_threads, filtered, unused);
     // From this half alone, so the estimate may still compare the halves.
     restore_coarse_band(one.colour_a, filtered, in.width, in.height, kCoarseSigma);
+  };
+  if (threads >= 2) {
+    std::exception_ptr failed;
+    std::thread other([&] {
+      try {
+        filter_half(1, threads - threads / 2);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    });
+    try {
+      filter_half(0, threads / 2);
+    } catch (...) {
+      other.join();
+      throw;
+    }
+    other.join();
+    if (failed) std::rethrow_exception(failed);
+  } else {
+    filter_half(0, 1);
+    filter_half(1, 1);
   }
   out.rgb.resize(out.rgb_a.size());
   for (std::size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] = 0.5f * (out.rgb_a[k] + out.rgb_b[k]);

@@ -4,10 +4,14 @@
 // and the other way round.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include <immintrin.h>
@@ -19,26 +23,80 @@ namespace whisker::denoising {
 // The widest tap offset any filter takes, pixels.
 inline constexpr int kMargin = 32;
 
+// Memory of at least 4 MiB in huge pages where the system gives them
+// (2 MiB each: a plane's taps rows apart then share a few TLB entries, and
+// the first touch faults once a huge page), else from malloc.
+void* allocate_planes(std::size_t bytes);
+void free_planes(void* p) noexcept;
+
+// An allocator that leaves floats uninitialised (Planes says what is zero),
+// from allocate_planes().
+template <class T>
+struct UninitAllocator : std::allocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = UninitAllocator<U>;
+  };
+  UninitAllocator() = default;
+  template <class U>
+  UninitAllocator(const UninitAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocate_planes(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) noexcept { free_planes(p); }
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 // `count` planes of a w x h image, each with kMargin pixels of zeros on
 // every side and rows padded to a multiple of 8 pixels, so that 8 pixels of
 // a row and their neighbours up to kMargin away load without bounds checks.
+// Planes lie `plane` floats apart, a multiple of 4 KiB plus 5 cache lines:
+// the same pixel of a dozen planes then falls in different sets of the
+// cache, not all in one (which holds 8 lines).
 struct Planes {
   int w = 0, h = 0, count = 0;
-  std::size_t stride = 0, rows = 0;
-  std::vector<float> data;
+  std::size_t stride = 0, rows = 0, plane = 0;
+  std::vector<float, UninitAllocator<float>> data;
 
   Planes() = default;
-  Planes(int width, int height, int planes)
+  // All zeros.
+  Planes(int width, int height, int planes) : Planes(width, height, planes, false) {
+    std::fill(data.begin(), data.end(), 0.0f);
+  }
+  // Zeros in the margins and the rows' padding only, the image's pixels
+  // left for the caller to write.
+  static Planes margins_zeroed(int width, int height, int planes) {
+    Planes p(width, height, planes, false);
+    for (int k = 0; k < planes; ++k) {
+      std::fill_n(p.at(k, -kMargin, -kMargin), std::size_t(kMargin) * p.stride, 0.0f);
+      std::fill_n(p.at(k, height, -kMargin), std::size_t(kMargin) * p.stride, 0.0f);
+      for (int y = 0; y < height; ++y) {
+        std::fill_n(p.at(k, y, -kMargin), kMargin, 0.0f);
+        std::fill(p.at(k, y, width), p.at(k, y, -kMargin) + p.stride, 0.0f);
+      }
+    }
+    return p;
+  }
+  float* at(int k, int y, int x) {
+    return &data[std::size_t(k) * plane + std::size_t(y + kMargin) * stride + std::size_t(x + kMargin)];
+  }
+  const float* at(int k, int y, int x) const {
+    return &data[std::size_t(k) * plane + std::size_t(y + kMargin) * stride + std::size_t(x + kMargin)];
+  }
+
+ private:
+  Planes(int width, int height, int planes, bool)
       : w(width), h(height), count(planes),
         stride(std::size_t(kMargin) * 2 + std::size_t((width + 7) / 8 * 8)),
         rows(std::size_t(kMargin) * 2 + std::size_t(height)),
-        data(std::size_t(planes) * rows * stride, 0.0f) {}
-  float* at(int k, int y, int x) {
-    return &data[(std::size_t(k) * rows + std::size_t(y + kMargin)) * stride + std::size_t(x + kMargin)];
-  }
-  const float* at(int k, int y, int x) const {
-    return &data[(std::size_t(k) * rows + std::size_t(y + kMargin)) * stride + std::size_t(x + kMargin)];
-  }
+        plane((rows * stride + 1023) / 1024 * 1024 + 80),
+        data(std::size_t(planes) * plane) {}
 };
 
 inline __m256 load8(const float* p) { return _mm256_loadu_ps(p); }
