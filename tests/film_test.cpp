@@ -14,6 +14,7 @@
 #include <glm/vec3.hpp>
 
 #include "render/film.h"
+#include "same_bits.h"
 
 namespace whisker {
 namespace {
@@ -193,11 +194,9 @@ TEST(Film, LoadedFeatureSumsGoOnExactly) {
   Snapshot a, b;
   whole.publish(a);
   resumed.publish(b);
-  ASSERT_EQ(a.features.size(), b.features.size());
-  EXPECT_EQ(0, std::memcmp(a.features.data(), b.features.data(), a.features.size() * sizeof(double)));
-  ASSERT_EQ(a.odd_rgb.size(), b.odd_rgb.size());
-  EXPECT_EQ(0, std::memcmp(a.odd_rgb.data(), b.odd_rgb.data(), a.odd_rgb.size() * sizeof(double)));
-  EXPECT_EQ(0, std::memcmp(a.sum.data(), b.sum.data(), a.sum.size() * sizeof(double)));
+  EXPECT_TRUE(same_bits(a.features, b.features));
+  EXPECT_TRUE(same_bits(a.odd_rgb, b.odd_rgb));
+  EXPECT_TRUE(same_bits(a.sum, b.sum));
   EXPECT_TRUE(b.odd_sum.empty());  // the luminance halves are not in a part
   plain.reset(2, 1, true);
   plain.load(part.sum, part.sum_sq);
