@@ -5,7 +5,6 @@
 // and pixel sums that drop non-finite samples.
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <random>
 #include <vector>
 
