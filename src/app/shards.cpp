@@ -52,12 +52,6 @@ std::string resumed_features(const CommandLine& cl, const ShardPlan& plan) {
   if (!cl.features && cl.out_denoised.empty()) return {};
   const Accumulation& part = *plan.start.resume;
   const std::string option = cl.out_denoised.empty() ? "--features" : "--out-denoised";
-  if (!plan.complete()) {
-    const SampleRange rest{part.ranges.front().end, plan.start.first_sample + plan.target};
-    return option + " with --resume " + cl.resume + ": a resumed render keeps no feature buffers; render " +
-           "samples " + ranges_to_string({rest}) + " as a part of their own (--samples, --features) and " +
-           "merge the two";
-  }
   if (!part.with_features)
     return option + " with --resume " + cl.resume + ": the part keeps no feature buffers (render it with --features)";
   return {};

@@ -317,9 +317,9 @@ void ProgressiveRenderer::adopt_generation(const RenderStart& start) {
   // The resumed part's sums, counters and samples, as if its passes had
   // just run here: the next pass adds onto them exactly as it would have.
   const Accumulation& a = *start.resume;
-  job.film.reset(job.width, job.height);
+  job.film.reset(job.width, job.height, features_ && a.with_features);
   job.film_stale = false;
-  job.film.load(a.sum, a.sum_sq);
+  job.film.load(a.sum, a.sum_sq, a.odd_rgb, a.features);
   job.spp_done = a.samples();
   job.counters = a.counters;
 }
