@@ -161,11 +161,14 @@ namespace {
 // thread keeps the seeds of the last pixels, one per slot (the pixel's index
 // mod kSeedSlots, so the paths of up to kSeedSlots consecutive pixels traced
 // side by side each keep theirs), and the hashes run once per pixel instead
-// of three times per 2D request.
+// of three times per 2D request. A pair's seeds are hashed when a path
+// first asks for it: a pass of one sample per pixel pays for the pairs its
+// paths use, not for all of them.
 constexpr std::uint32_t kCachedPairs = 16;
 struct PixelSeeds {
   std::uint32_t key = 0;
   bool valid = false;
+  std::uint32_t hashed = 0;             // bit d: pair[d] holds pair d's seeds
   std::uint32_t first[4];              // dimensions 0-3 (the 4D point)
   std::uint32_t pair[kCachedPairs][3];  // padded pair d >= 2: shuffle, x, y (0, 1 unused)
 };
@@ -176,21 +179,21 @@ void pair_seeds(std::uint32_t key, std::uint32_t dim, std::uint32_t out[3]) {
   out[2] = hash32(out[0], 2);
 }
 
-const PixelSeeds& pixel_seeds(std::uint32_t key, std::uint32_t slot) {
+PixelSeeds& pixel_seeds(std::uint32_t key, std::uint32_t slot) {
   thread_local PixelSeeds slots[kSeedSlots];
   PixelSeeds& cache = slots[slot];
   if (cache.valid && cache.key == key) return cache;
   cache.key = key;
   cache.valid = true;
+  cache.hashed = 0;
   for (std::uint32_t k = 0; k < 4; ++k) cache.first[k] = hash32(key, 0xd0 + k);
-  for (std::uint32_t d = 2; d < kCachedPairs; ++d) pair_seeds(key, d, cache.pair[d]);
   return cache;
 }
 
 }  // namespace
 
 void Sampler::sobol2d(float& u, float& v) {
-  const PixelSeeds& seeds = pixel_seeds(key_, slot_);
+  PixelSeeds& seeds = pixel_seeds(key_, slot_);
   if (dim_ < 2) {
     // The first four dimensions (pixel jitter and the first bounce, or the
     // first Fresnel choice) are one 4D Sobol point: the index is shuffled
@@ -211,10 +214,13 @@ void Sampler::sobol2d(float& u, float& v) {
     return;
   }
   std::uint32_t computed[3];
-  const std::uint32_t* pair = seeds.pair[dim_ % kCachedPairs];
+  const std::uint32_t* pair = computed;
   if (dim_ >= kCachedPairs) {
     pair_seeds(key_, dim_, computed);
-    pair = computed;
+  } else {
+    if (!(seeds.hashed >> dim_ & 1u)) pair_seeds(key_, dim_, seeds.pair[dim_]);
+    seeds.hashed |= 1u << dim_;
+    pair = seeds.pair[dim_];
   }
   ++dim_;
   // Shuffle the order of the points (Burley section 4): i = owen(index)...
