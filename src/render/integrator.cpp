@@ -202,8 +202,19 @@ namespace {
 
 // A pixel's sums at the start of the tile's samples: carried from the
 // pass's earlier chunk, or zero.
-PixelSum start_sum(const TileWork& tile, std::uint32_t pixel) {
-  return tile.carry.in ? tile.carry.sums[pixel] : PixelSum{};
+// Without feature buffers only the radiance sums are read (Film::add), so
+// only they are cleared: most of a PixelSum is feature sums, and clearing
+// them all was a pass's largest memset.
+void start_sum(const TileWork& tile, std::uint32_t pixel, bool features, PixelSum& out) {
+  if (tile.carry.in) {
+    out = tile.carry.sums[pixel];
+  } else if (features) {
+    out = PixelSum{};
+  } else {
+    out.sum = glm::dvec3(0.0);
+    out.sum_sq = out.odd_sum = 0.0;
+    out.dropped = 0;
+  }
 }
 
 // A pixel's sums at the end: left for the pass's next chunk, or added to the
@@ -248,7 +259,8 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
   thread_local std::vector<PixelSum> sums;
   sums.resize(static_cast<std::size_t>(pixels));
   auto index = [&](std::int64_t p) { return cam.pixel_index(t.i0 + int(p / cols), t.j0 + int(p % cols)); };
-  for (std::int64_t p = 0; p < pixels; ++p) sums[std::size_t(p)] = start_sum(tile, index(p));
+  const bool features = tile.features || film.has_features();
+  for (std::int64_t p = 0; p < pixels; ++p) start_sum(tile, index(p), features, sums[std::size_t(p)]);
   for (std::int64_t q0 = 0; q0 < pairs;) {
     if (abandoned(tile, result)) return result;
     int n = int(std::min<std::int64_t>(kLanes, pairs - q0));
