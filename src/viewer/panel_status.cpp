@@ -6,13 +6,31 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "viewer/hover_delay.h"
 #include "viewer/panel_parts.h"
 #include "viewer/readout.h"
 
 namespace whisker {
 
+namespace {
+HoverDelay g_hover;
+}  // namespace
+
+void tooltips_frame() {
+  const ImGuiIO& io = ImGui::GetIO();
+  g_hover.begin_frame(ImGui::GetTime(), io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f,
+                      ImGui::IsAnyMouseDown());
+}
+
+bool tooltip_waiting() { return g_hover.waiting(); }
+
 void tip(const char* text) {
   if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+  // The widget's place tells it from the others.
+  const ImVec2 a = ImGui::GetItemRectMin();
+  const auto key = (static_cast<unsigned long long>(std::lround(a.x * 4.0f)) << 32) ^
+                   static_cast<unsigned long long>(std::lround(a.y * 4.0f));
+  if (!g_hover.due(key)) return;
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
   ImGui::TextUnformatted(text);

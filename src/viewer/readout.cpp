@@ -83,9 +83,16 @@ std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool
 }
 
 BoxPlace place_readout(float mx, float my, float w, float h, float ax, float ay, float aw, float ah) {
-  BoxPlace p{mx + 16.0f, my + 8.0f};
-  if (p.x + w > ax + aw) p.x = std::max(ax, mx - 8.0f - w);
-  if (p.y + h > ay + ah) p.y = std::max(ay, my - 8.0f - h);
+  // Away from the image's centre on each axis, beside the pointer; the other
+  // side where that leaves the image.
+  const float right_x = mx + 16.0f, left_x = mx - 8.0f - w;
+  const float below_y = my + 8.0f, above_y = my - 8.0f - h;
+  const bool go_right = mx >= ax + 0.5f * aw, go_down = my >= ay + 0.5f * ah;
+  BoxPlace p{go_right ? right_x : left_x, go_down ? below_y : above_y};
+  if (p.x + w > ax + aw) p.x = std::max(ax, left_x);
+  if (p.x < ax) p.x = std::min(right_x, std::max(ax, ax + aw - w));
+  if (p.y + h > ay + ah) p.y = std::max(ay, above_y);
+  if (p.y < ay) p.y = std::min(below_y, std::max(ay, ay + ah - h));
   return p;
 }
 

@@ -55,9 +55,11 @@ PixelReadout read_pixel(const Snapshot& s, int x, int y);
 std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool held);
 
 // Where a box of w x h (the readout) goes for the mouse at (mx, my), all in
-// window units: below right of the pointer, flipped left of it (above it)
-// where it would leave the image area (ax, ay, aw, ah) on the right (at the
-// bottom), so it never covers the panel beside the image.
+// window units: beside the pointer on the side away from the centre of the
+// image area (ax, ay, aw, ah), on each axis (right of the pointer in the
+// right half, above it in the top half, ...), so it leaves the middle of the
+// image (the subject) in view; on the other side where it would leave the
+// area, so it never covers the panel beside the image.
 struct BoxPlace {
   float x = 0, y = 0;
 };
