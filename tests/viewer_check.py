@@ -84,6 +84,7 @@ def log_names(entries):
         "readouts": readouts,
         "scenes": [f.get("text", "") for w, f in entries if w == "scene"],
         "panels": [f for w, f in entries if w == "panel"],
+        "tips": [f.get("text", "") for w, f in entries if w == "tip"],
     }
 
 

@@ -65,3 +65,7 @@ whisker_viewer_script_test(ViewerInput.NewUserWalkOnTheCatStaysSane viewer_walk_
 # Esc closes an open dropdown or question before it quits; with unsaved
 # edits quitting asks, and Enter says yes.
 whisker_viewer_script_test(ViewerInput.EscClosesPopupsQuitAsksAfterEdits viewer_quit_test.sh 300)
+
+# A small window keeps the image (the panel narrows, steps aside, Tab);
+# the readout leaves the centre and I hides it; tooltips wait for a rest.
+whisker_viewer_script_test(ViewerInput.SmallWindowKeepsTheImageReadoutHidesTooltipsWait viewer_small_window_test.sh 400)

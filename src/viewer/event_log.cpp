@@ -42,6 +42,10 @@ void EventLog::frame(const ViewerState& s, double t0, double t_shown, std::uint6
     panel_overlay_ = s.panel_overlay;
     panel_width_ = s.panel_width;
   }
+  if (tooltip_shown() != tip_) {
+    std::fprintf(f_, "tip t=%.6f text=%s\n", t0, tooltip_shown().c_str());
+    tip_ = tooltip_shown();
+  }
   if (s.light_outside != light_outside_) {
     std::fprintf(f_, "light-outside t=%.6f text=%s\n", t0, s.light_outside.c_str());
     light_outside_ = s.light_outside;

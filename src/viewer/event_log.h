@@ -9,6 +9,7 @@
 //                                 the panel's place changed: shown or not (Tab,
 //                                 a small window), over the image or beside
 //                                 it, its width in window units
+//   tip t=T text=TEXT             the panel's tooltip changed to this ("": none)
 //   outside t=T text=WHY          the eye is outside the room or in an object
 //                                 (empty: back inside), as the panel says in red
 //   readout t=T box=X,Y,W,H text=LINE|LINE|...
@@ -48,7 +49,7 @@ class EventLog {
  private:
   std::FILE* f_ = nullptr;
   std::uint64_t generation_ = 0;
-  std::string message_, pending_load_, outside_, light_outside_, scene_choice_;
+  std::string message_, pending_load_, outside_, light_outside_, scene_choice_, tip_;
   bool panel_logged_ = false, panel_visible_ = false, panel_overlay_ = false;
   float panel_width_ = 0.0f;
 };

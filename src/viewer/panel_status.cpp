@@ -14,9 +14,13 @@ namespace whisker {
 
 namespace {
 HoverDelay g_hover;
+std::string g_tip_shown;  // this frame's tooltip, for the event log
 }  // namespace
 
+const std::string& tooltip_shown() { return g_tip_shown; }
+
 void tooltips_frame() {
+  g_tip_shown.clear();
   const ImGuiIO& io = ImGui::GetIO();
   g_hover.begin_frame(ImGui::GetTime(), io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f,
                       ImGui::IsAnyMouseDown());
@@ -31,6 +35,7 @@ void tip(const char* text) {
   const auto key = (static_cast<unsigned long long>(std::lround(a.x * 4.0f)) << 32) ^
                    static_cast<unsigned long long>(std::lround(a.y * 4.0f));
   if (!g_hover.due(key)) return;
+  g_tip_shown = text;
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
   ImGui::TextUnformatted(text);

@@ -142,6 +142,8 @@ std::string scene_choice(const ViewerState& state);
 // Whether a hovered widget waits for the pointer to rest before its tooltip
 // shows: the window then draws frames until it does.
 bool tooltip_waiting();
+// The text of the tooltip shown this frame ("" for none).
+const std::string& tooltip_shown();
 
 // The samples per pixel that the window's title and the panel's progress
 // bar both say: the current settings' own published passes (0 until the
