@@ -69,3 +69,7 @@ whisker_viewer_script_test(ViewerInput.EscClosesPopupsQuitAsksAfterEdits viewer_
 # A small window keeps the image (the panel narrows, steps aside, Tab);
 # the readout leaves the centre and I hides it; tooltips wait for a rest.
 whisker_viewer_script_test(ViewerInput.SmallWindowKeepsTheImageReadoutHidesTooltipsWait viewer_small_window_test.sh 400)
+
+# The Scene dropdown names a loaded file; a saved EXR records the glass-mesh
+# edit and the exposure that maps it to the report's display.
+whisker_viewer_script_test(ViewerInput.DropdownNamesTheFileExrRecordsEditsAndExposure viewer_scene_file_test.sh 300)
