@@ -85,6 +85,7 @@ def log_names(entries):
         "scenes": [f.get("text", "") for w, f in entries if w == "scene"],
         "panels": [f for w, f in entries if w == "panel"],
         "tips": [f.get("text", "") for w, f in entries if w == "tip"],
+        "states": [f.get("text", "") for w, f in entries if w == "state"],
     }
 
 

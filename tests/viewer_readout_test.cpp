@@ -226,3 +226,17 @@ TEST(SaveName, NeverOverwrites) {
   std::ofstream(dir / "cat-16spp-2.exr") << "x";  // either file takes the name
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-3");
 }
+
+// Sampling > stop at: the noise limit once the error is known and low
+// enough, the time limit once the render time reaches it, off at 0.
+TEST(StopAt, NoiseOrTimeReached) {
+  const double nan = std::nan("");
+  EXPECT_EQ(stop_reason(0.05, 10.0, 0.0f, 0.0f), "");     // both off
+  EXPECT_EQ(stop_reason(nan, 10.0, 5.0f, 0.0f), "");      // no error yet
+  EXPECT_EQ(stop_reason(0.051, 10.0, 5.0f, 0.0f), "");    // 5.1 % > 5 %
+  EXPECT_EQ(stop_reason(0.05, 10.0, 5.0f, 0.0f), "noise 5 % reached");
+  EXPECT_EQ(stop_reason(0.02, 10.0, 2.5f, 0.0f), "noise 2.5 % reached");
+  EXPECT_EQ(stop_reason(0.5, 9.9, 0.0f, 10.0f), "");
+  EXPECT_EQ(stop_reason(0.5, 10.0, 0.0f, 10.0f), "10.0 s reached");
+  EXPECT_EQ(stop_reason(0.5, 75.0, 1.0f, 60.0f), "1m 00s reached");
+}

@@ -73,3 +73,7 @@ whisker_viewer_script_test(ViewerInput.SmallWindowKeepsTheImageReadoutHidesToolt
 # The Scene dropdown names a loaded file; a saved EXR records the glass-mesh
 # edit and the exposure that maps it to the report's display.
 whisker_viewer_script_test(ViewerInput.DropdownNamesTheFileExrRecordsEditsAndExposure viewer_scene_file_test.sh 300)
+
+# Sampling > stop at: a render stops after its seconds or at its noise, and
+# the render after an edit runs (and stops) again.
+whisker_viewer_script_test(ViewerInput.StopAtTimeOrNoiseStopsThisRenderNotTheNext viewer_stop_test.sh 300)

@@ -72,6 +72,9 @@ void Controller::apply_edits(double now, bool record) {
     // More samples of the same image: the accumulation carries on.
     renderer.set_target_spp(s.edited.settings.target_spp);
     s.applied = s.edited;
+    // Past a stop at noise or time: the raised target wins, this render
+    // does not stop at them again.
+    if (s.stopped_gen == s.generation) s.stop_note.clear();
     return;
   }
   switch (classify_change(s.applied, s.edited)) {
@@ -280,6 +283,22 @@ void Controller::save() {
   } catch (const std::exception& e) {
     s.message = std::string("save failed: ") + e.what();
     s.message_is_error = true;
+  }
+}
+
+void Controller::stop_when_reached() {
+  const Snapshot& sn = s.snap;
+  if (sn.generation != s.generation || sn.quick || sn.spp == 0 || s.paused) return;
+  const std::string why = stop_reason(s.rse, sn.counters.seconds, s.stop_noise_pct, s.stop_seconds);
+  if (s.stopped_gen != s.generation && !why.empty() && !sn.done) {
+    renderer.set_target_spp(int(sn.spp));
+    s.stopped_gen = s.generation;
+    s.stop_note = why;
+  } else if (s.stopped_gen == s.generation && !s.stop_note.empty() && why.empty()) {
+    // The limit was raised or switched off: on to the scene's own target.
+    renderer.set_target_spp(s.applied.settings.target_spp);
+    s.stopped_gen = 0;
+    s.stop_note.clear();
   }
 }
 

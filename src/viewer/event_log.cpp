@@ -42,6 +42,10 @@ void EventLog::frame(const ViewerState& s, double t0, double t_shown, std::uint6
     panel_overlay_ = s.panel_overlay;
     panel_width_ = s.panel_width;
   }
+  if (const std::string state = state_text(s); state != state_) {
+    std::fprintf(f_, "state t=%.6f text=%s\n", t0, state.c_str());
+    state_ = state;
+  }
   if (tooltip_shown() != tip_) {
     std::fprintf(f_, "tip t=%.6f text=%s\n", t0, tooltip_shown().c_str());
     tip_ = tooltip_shown();

@@ -9,6 +9,8 @@
 //                                 the panel's place changed: shown or not (Tab,
 //                                 a small window), over the image or beside
 //                                 it, its width in window units
+//   state t=T text=STATE          the panel's state changed (state_text:
+//                                 rendering, done: target reached, stopped: ...)
 //   tip t=T text=TEXT             the panel's tooltip changed to this ("": none)
 //   outside t=T text=WHY          the eye is outside the room or in an object
 //                                 (empty: back inside), as the panel says in red
@@ -49,7 +51,7 @@ class EventLog {
  private:
   std::FILE* f_ = nullptr;
   std::uint64_t generation_ = 0;
-  std::string message_, pending_load_, outside_, light_outside_, scene_choice_, tip_;
+  std::string message_, pending_load_, outside_, light_outside_, scene_choice_, tip_, state_;
   bool panel_logged_ = false, panel_visible_ = false, panel_overlay_ = false;
   float panel_width_ = 0.0f;
 };

@@ -214,6 +214,27 @@ static void threads_slider(ViewerState& s, PanelRequests& req) {
   if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
 }
 
+// Stop at a noise level or after a time: one line, applied when a field
+// lets go of the keyboard.
+static void stop_fields(ViewerState& s) {
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("stop at");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(56.0f * scale);
+  ImGui::InputFloat("% noise or##stopnoise", &s.stop_noise_field, 0.0f, 0.0f, "%g");
+  if (!ImGui::IsItemActive()) s.stop_noise_field = s.stop_noise_pct = std::max(0.0f, s.stop_noise_field);
+  tip("Stop this render once its noise (the line at the top, % of the mean) is at most this; "
+      "0: never. An edit starts a new render, which stops there too. Raise 'target spp' or "
+      "set 0 here to go on.");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(56.0f * scale);
+  ImGui::InputFloat("s (0: off)##stopseconds", &s.stop_seconds_field, 0.0f, 0.0f, "%g");
+  if (!ImGui::IsItemActive()) s.stop_seconds_field = s.stop_seconds = std::max(0.0f, s.stop_seconds_field);
+  tip("Stop this render after this many seconds of render time (the 'elapsed' clock); 0: never. "
+      "An edit starts a new render, which gets as long again.");
+}
+
 static bool scene_has_glass(const Scene& e) {
   const auto glass = [](const Material& m) {
     return is_glass(m.kind);
@@ -266,6 +287,7 @@ static void sampling_section(ViewerState& s, PanelRequests& req) {
   tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
       "Enter; raising it, or +, carries on from the current image.");
   threads_slider(s, req);
+  stop_fields(s);
 }
 
 static void bookmarks(const ViewerState& s, PanelRequests& req) {

@@ -58,9 +58,12 @@ std::string human(double v) {
   return buf;
 }
 
+}  // namespace
+
 std::string state_text(const ViewerState& s) {
   const Snapshot& sn = s.snap;
   if (s.paused) return "paused";
+  if (s.stopped_gen == s.generation && !s.stop_note.empty()) return "stopped: " + s.stop_note;
   if (sn.done && sn.generation == s.generation) return deterministic_estimate(s.applied) ? "done: exact" : "done: target reached";
   // Quick passes after an edit (viewer/blend.h): full resolution, one path a sample.
   if (s.shown.quick_spp > 0 && s.shown.own_spp == 0)
@@ -69,8 +72,6 @@ std::string state_text(const ViewerState& s) {
     return "rendering (+" + std::to_string(s.shown.quick_spp) + " fast spp)";
   return "rendering";
 }
-
-}  // namespace
 
 std::uint64_t shown_spp(const ViewerState& s) {
   const Snapshot& sn = s.snap;

@@ -82,6 +82,16 @@ std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool
   return lines;
 }
 
+std::string stop_reason(double rse, double seconds, float noise_pct, float max_seconds) {
+  char text[64];
+  if (noise_pct > 0.0f && std::isfinite(rse) && 100.0 * rse <= noise_pct) {
+    std::snprintf(text, sizeof text, "noise %.3g %% reached", double(noise_pct));
+    return text;
+  }
+  if (max_seconds > 0.0f && seconds >= max_seconds) return format_duration(max_seconds) + " reached";
+  return {};
+}
+
 BoxPlace place_readout(float mx, float my, float w, float h, float ax, float ay, float aw, float ah) {
   // Away from the image's centre on each axis, beside the pointer; the other
   // side where that leaves the image.

@@ -39,6 +39,12 @@ ProgressInfo estimate_progress(const ProgressInput& in);
 // "1h 02m", "3m 05s", "12.3 s" (as the headless progress line).
 std::string format_duration(double seconds);
 
+// Why a render stops before its target (Sampling > stop at): "noise 2 %
+// reached" once the relative standard error `rse` is at most noise_pct
+// percent, "10.0 s reached" once its render time is max_seconds; "" while
+// neither is (a limit of 0 is off; an unknown error, NaN, is not low).
+std::string stop_reason(double rse, double seconds, float noise_pct, float max_seconds);
+
 // Pixel (x, y) of a snapshot: mean radiance and the standard error of its
 // luminance mean (from the per-pixel sums of squares).
 struct PixelReadout {

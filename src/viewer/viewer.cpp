@@ -314,6 +314,7 @@ struct Session {
     while (!should_close()) {
       const double t0 = wait_for_events();
       bool fresh = take_snapshot();
+      ctl.stop_when_reached();
       ask_denoiser();
       if (denoiser.latest(s.denoised, s.denoised_figures) || showing_denoised(s) != uploaded_denoised) {
         upload_image();

@@ -122,6 +122,14 @@ struct ViewerState {
   int compare = kCompareOff;
   float wipe = 0.5f;      // held image left of this fraction of the width
 
+  // Sampling > stop at: a render stops once its noise (percent of the mean)
+  // or its render time (seconds) reaches these (0: off); the next render,
+  // after an edit, starts as ever and stops at them too.
+  float stop_noise_pct = 0.0f, stop_seconds = 0.0f;
+  float stop_noise_field = 0.0f, stop_seconds_field = 0.0f;  // as being typed
+  std::uint64_t stopped_gen = 0;  // the generation stopped (or let go on) by them
+  std::string stop_note;          // why it stopped ("noise 2 % reached"); "" once let go on
+
   std::uint64_t bar_spp = 0;  // the samples per pixel the panel's bar said last frame
 
   // The mean UI frame time (ms) of the last frames, for the panel.
@@ -138,6 +146,10 @@ void draw_panel(ViewerState& state, float window_w, float window_h, float panel_
 // for a scene loaded from any other file (a saved, edited scene keeps the
 // name of the scene it came from, so its name alone would say "cat").
 std::string scene_choice(const ViewerState& state);
+
+// The panel's first line after the scene and size: "rendering", "paused",
+// "done: target reached", "stopped: noise 2 % reached", ...
+std::string state_text(const ViewerState& state);
 
 // Whether a hovered widget waits for the pointer to rest before its tooltip
 // shows: the window then draws frames until it does.
