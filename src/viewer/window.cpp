@@ -74,7 +74,11 @@ void install_redraw_callbacks(GLFWwindow* w) {
   glfwSetKeyCallback(w, [](GLFWwindow*, int key, int, int action, int mods) {
     // Every press, in order, even one released before the next frame:
     // the shortcuts read these rather than ImGui's per-frame key state.
-    if (action == GLFW_PRESS || action == GLFW_REPEAT) g_key_presses.push_back({key, mods, action == GLFW_REPEAT});
+    // A Tab reaches here only while a field is typed into (ImGuiSession's
+    // callback keeps the others from ImGui and queues them itself): it is
+    // the field's, never the panel's shortcut.
+    if (key != GLFW_KEY_TAB && (action == GLFW_PRESS || action == GLFW_REPEAT))
+      g_key_presses.push_back({key, mods, action == GLFW_REPEAT});
     mark_redraw();
   });
   glfwSetCharCallback(w, [](GLFWwindow*, unsigned) { mark_redraw(); });
