@@ -82,6 +82,10 @@ def log_names(entries):
         "asks": [f.get("load", "") for w, f in entries if w == "ask"],
         "outside": [f.get("text", "") for w, f in entries if w == "outside"],
         "readouts": readouts,
+        "scenes": [f.get("text", "") for w, f in entries if w == "scene"],
+        "panels": [f for w, f in entries if w == "panel"],
+        "tips": [f.get("text", "") for w, f in entries if w == "tip"],
+        "states": [f.get("text", "") for w, f in entries if w == "state"],
     }
 
 

@@ -17,11 +17,11 @@ viewer_test_setup "$1" Xvfb xdotool
 
 cat >"$dir/drive.sh" <<'EOF'
 # The window is 912x800: the image left (512 wide), the panel right; at
-# (880, 780) the panel shows nothing but the space right of a label.
-A() { click 880 780; click 256 400; drag 880 780 300 400; press c; }
+# (880, 180) the panel shows nothing but the space right of a status line.
+A() { click 880 180; click 256 400; drag 880 180 300 400; press c; }
 B() { press r; drag 256 400 320 400; press c; }
 F() {
-  xdotool mousemove --window "$wid" 880 780; sleep 0.5
+  xdotool mousemove --window "$wid" 880 180; sleep 0.5
   # Stopped, the viewer reads the move and the press in one frame.
   kill -STOP "$pid"; xdotool mousemove --window "$wid" 200 400 mousedown 1; sleep 0.2; kill -CONT "$pid"
   sleep 0.3

@@ -128,17 +128,40 @@ TEST(PixelReadout, LinesSaySampleOrSamples) {
             "0 samples (std. error of the pixel mean)");
 }
 
-// The readout's box goes below right of the pointer, and flips left (up)
-// where it would leave the image on the right (bottom): never over the
-// panel right of the image, never below the window.
+// The readout's box goes beside the pointer away from the image's centre,
+// and to the other side where it would leave the image: never over the
+// panel right of the image, never below the window, never over the centre
+// where it fits on the outer side.
 TEST(PixelReadout, BoxStaysOverTheImage) {
   const float ax = 0, ay = 144, aw = 512, ah = 512, w = 330, h = 84;
   const auto inside = [&](const BoxPlace& p) {
     return p.x >= ax && p.y >= ay && p.x + w <= ax + aw && p.y + h <= ay + ah;
   };
-  const BoxPlace middle = place_readout(100, 300, w, h, ax, ay, aw, ah);
-  EXPECT_FLOAT_EQ(middle.x, 116);  // below right of the pointer
-  EXPECT_FLOAT_EQ(middle.y, 308);
+  // Top left quarter: above the pointer; left of it there is no room.
+  const BoxPlace upper_left = place_readout(100, 300, w, h, ax, ay, aw, ah);
+  EXPECT_FLOAT_EQ(upper_left.x, 116);
+  EXPECT_FLOAT_EQ(upper_left.y, 208);
+  // A narrower box near the centre: below right of the pointer in the
+  // bottom right quarter, above left of it in the top left one.
+  const float narrow = 150;
+  const BoxPlace lower_right = place_readout(270, 410, narrow, h, ax, ay, aw, ah);
+  EXPECT_FLOAT_EQ(lower_right.x, 286);
+  EXPECT_FLOAT_EQ(lower_right.y, 418);
+  const BoxPlace upper_left_narrow = place_readout(200, 390, narrow, h, ax, ay, aw, ah);
+  EXPECT_FLOAT_EQ(upper_left_narrow.x, 200 - 8 - narrow);
+  EXPECT_FLOAT_EQ(upper_left_narrow.y, 390 - 8 - h);
+  // Top right with the wide box: above; neither side has room, so it
+  // keeps to the image's left edge.
+  const BoxPlace upper_right = place_readout(300, 390, w, h, ax, ay, aw, ah);
+  EXPECT_FLOAT_EQ(upper_right.x, 0);
+  EXPECT_FLOAT_EQ(upper_right.y, 390 - 8 - h);
+  const float cx = ax + aw / 2, cy = ay + ah / 2;
+  for (const float mx : {180.0f, 240.0f, 250.0f, 262.0f, 300.0f, 340.0f})
+    for (const float my : {250.0f, 330.0f, 395.0f, 405.0f, 470.0f, 560.0f}) {
+      const BoxPlace p = place_readout(mx, my, w, h, ax, ay, aw, ah);
+      EXPECT_FALSE(cx >= p.x && cx < p.x + w && cy >= p.y && cy < p.y + h)
+          << "pointer " << mx << ", " << my << ": the box at " << p.x << ", " << p.y << " covers the centre";
+    }
   for (const float mx : {0.0f, 100.0f, 255.0f, 400.0f, 511.0f})
     for (const float my : {144.0f, 300.0f, 600.0f, 655.0f}) {
       const BoxPlace p = place_readout(mx, my, w, h, ax, ay, aw, ah);
@@ -202,4 +225,18 @@ TEST(SaveName, NeverOverwrites) {
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-2");
   std::ofstream(dir / "cat-16spp-2.exr") << "x";  // either file takes the name
   EXPECT_EQ(free_stem(dir.string(), "cat-16spp", exts), "cat-16spp-3");
+}
+
+// Sampling > stop at: the noise limit once the error is known and low
+// enough, the time limit once the render time reaches it, off at 0.
+TEST(StopAt, NoiseOrTimeReached) {
+  const double nan = std::nan("");
+  EXPECT_EQ(stop_reason(0.05, 10.0, 0.0f, 0.0f), "");     // both off
+  EXPECT_EQ(stop_reason(nan, 10.0, 5.0f, 0.0f), "");      // no error yet
+  EXPECT_EQ(stop_reason(0.051, 10.0, 5.0f, 0.0f), "");    // 5.1 % > 5 %
+  EXPECT_EQ(stop_reason(0.05, 10.0, 5.0f, 0.0f), "noise 5 % reached");
+  EXPECT_EQ(stop_reason(0.02, 10.0, 2.5f, 0.0f), "noise 2.5 % reached");
+  EXPECT_EQ(stop_reason(0.5, 9.9, 0.0f, 10.0f), "");
+  EXPECT_EQ(stop_reason(0.5, 10.0, 0.0f, 10.0f), "10.0 s reached");
+  EXPECT_EQ(stop_reason(0.5, 75.0, 1.0f, 60.0f), "1m 00s reached");
 }

@@ -65,3 +65,15 @@ whisker_viewer_script_test(ViewerInput.NewUserWalkOnTheCatStaysSane viewer_walk_
 # Esc closes an open dropdown or question before it quits; with unsaved
 # edits quitting asks, and Enter says yes.
 whisker_viewer_script_test(ViewerInput.EscClosesPopupsQuitAsksAfterEdits viewer_quit_test.sh 300)
+
+# A small window keeps the image (the panel narrows, steps aside, Tab);
+# the readout leaves the centre and I hides it; tooltips wait for a rest.
+whisker_viewer_script_test(ViewerInput.SmallWindowKeepsTheImageReadoutHidesTooltipsWait viewer_small_window_test.sh 400)
+
+# The Scene dropdown names a loaded file; a saved EXR records the glass-mesh
+# edit and the exposure that maps it to the report's display.
+whisker_viewer_script_test(ViewerInput.DropdownNamesTheFileExrRecordsEditsAndExposure viewer_scene_file_test.sh 300)
+
+# Sampling > stop at: a render stops after its seconds or at its noise, and
+# the render after an edit runs (and stops) again.
+whisker_viewer_script_test(ViewerInput.StopAtTimeOrNoiseStopsThisRenderNotTheNext viewer_stop_test.sh 300)

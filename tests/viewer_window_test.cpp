@@ -334,12 +334,13 @@ TEST_F(ViewerWindow, CatMatchesHeadless) {
 }
 
 // On a screen too small for the image beside the panel, the window fits the
-// screen and the image is scaled down, keeping its aspect, beside the panel.
+// screen (640x480), the panel narrows to its narrowest (280) and the image
+// is scaled down, keeping its aspect, beside it (viewer/layout.h).
 TEST_F(ViewerWindow, SmallScreenScalesImageDown) {
   fs::create_directories(kOut);
   const fs::path shot = kOut / "small-window.png", ref = kOut / "small-headless.png";
   ASSERT_EQ(run_viewer("--scene three-balls --frames 1 --screenshot '" + shot.string() + "'",
-                       (kOut / "small-window.log").string(), "800x600x24"),
+                       (kOut / "small-window.log").string(), "640x480x24"),
             0)
       << slurp(kOut / "small-window.log");
   ASSERT_EQ(run_headless("--scene three-balls --frames 1 --out '" + ref.string() + "'",
@@ -348,13 +349,14 @@ TEST_F(ViewerWindow, SmallScreenScalesImageDown) {
   const nlohmann::json summary = nlohmann::json::parse(slurp(shot.string() + ".json"));
   const Rgb8 window = load_png(shot), headless = load_png(ref);
   ASSERT_EQ(window.w, summary["framebuffer"][0].get<int>());
-  EXPECT_LE(window.w, 800);
-  EXPECT_LE(window.h, 600);
+  EXPECT_LE(window.w, 640);
+  EXPECT_LE(window.h, 480);
   const Rect r = render_rect(summary);
   EXPECT_LT(r.w, 512);
   EXPECT_EQ(r.w, r.h);
+  EXPECT_EQ(r.w, window.w - 280) << "the image takes all the narrowest panel leaves";
   EXPECT_GE(r.x, 0);
-  EXPECT_LE(r.x + r.w, window.w - 300) << "image under the panel";
+  EXPECT_LE(r.x + r.w, window.w - 280) << "image under the panel";
 
   // Scaled, so compare region averages: each quarter of the image.
   for (int q = 0; q < 4; ++q) {

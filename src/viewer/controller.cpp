@@ -17,6 +17,7 @@
 #include "scene/settings_json.h"
 #include "viewer/display.h"
 #include "viewer/readout.h"
+#include "viewer/save_record.h"
 #include "viewer/scene_diff.h"
 
 namespace whisker {
@@ -25,6 +26,25 @@ std::string scene_label_of(const Scene& scene, const std::string& path) {
   if (!scene.name.empty()) return scene.name;
   if (!path.empty()) return std::filesystem::path(path).stem().string();
   return "scene";
+}
+
+// The name among `names` (the bundled scenes) whose file is `path`, or "".
+static std::string bundled_name(const std::vector<std::string>& names, const std::string& path) {
+  for (const std::string& name : names) {
+    try {
+      std::error_code ec;
+      if (std::filesystem::equivalent(resolve_scene(name), path, ec)) return name;
+    } catch (const std::exception&) {
+      // a listed name that no longer resolves is not this file
+    }
+  }
+  return {};
+}
+
+std::string scene_choice(const ViewerState& s) {
+  if (!s.bundled_scene.empty()) return s.bundled_scene;
+  const std::string file = std::filesystem::path(s.scene_path).filename().string();
+  return "file: " + (file.empty() ? s.scene_label : file);
 }
 
 void request_for_drop(const std::string& path, PanelRequests& req, std::string& error) {
@@ -52,6 +72,9 @@ void Controller::apply_edits(double now, bool record) {
     // More samples of the same image: the accumulation carries on.
     renderer.set_target_spp(s.edited.settings.target_spp);
     s.applied = s.edited;
+    // Past a stop at noise or time: the raised target wins, this render
+    // does not stop at them again.
+    if (s.stopped_gen == s.generation) s.stop_note.clear();
     return;
   }
   switch (classify_change(s.applied, s.edited)) {
@@ -151,6 +174,7 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
     s.scene_label = scene_label_of(scene, path.string());
     s.path_field = path.string();
     s.scene_path = path.string();
+    s.bundled_scene = bundled_name(s.scene_names, s.scene_path);
     s.generation = renderer.set_scene(scene);
     s.last_change = now;
     s.history.clear();
@@ -237,10 +261,7 @@ void Controller::save() {
     // while the window shows them, viewer/blend.h).
     const Image img = mean_image(live_image(s));
     const bool display_units = s.save_display_units;
-    ImageAttributes record = render_record(s.applied, own, display_units);
-    if (denoised)
-      record.emplace_back("whisker.image", "denoised (fast filter) from " + std::to_string(s.denoised.spp) +
-                                               " spp, not the raw estimate");
+    const ImageAttributes record = viewer_record(s, own, display_units);
     write_float_image(base + float_ext, display_units ? display_referred(img) : img, record);
     const char* units = display_units ? " (display units: 1.0 = white)" : " (radiance)";
     const bool wipe = !debug && s.held.spp > 0 && s.compare == kCompareWipe;
@@ -262,6 +283,22 @@ void Controller::save() {
   } catch (const std::exception& e) {
     s.message = std::string("save failed: ") + e.what();
     s.message_is_error = true;
+  }
+}
+
+void Controller::stop_when_reached() {
+  const Snapshot& sn = s.snap;
+  if (sn.generation != s.generation || sn.quick || sn.spp == 0 || s.paused) return;
+  const std::string why = stop_reason(s.rse, sn.counters.seconds, s.stop_noise_pct, s.stop_seconds);
+  if (s.stopped_gen != s.generation && !why.empty() && !sn.done) {
+    renderer.set_target_spp(int(sn.spp));
+    s.stopped_gen = s.generation;
+    s.stop_note = why;
+  } else if (s.stopped_gen == s.generation && !s.stop_note.empty() && why.empty()) {
+    // The limit was raised or switched off: on to the scene's own target.
+    renderer.set_target_spp(s.applied.settings.target_spp);
+    s.stopped_gen = 0;
+    s.stop_note.clear();
   }
 }
 
@@ -312,6 +349,8 @@ void Controller::carry_out(const PanelRequests& req, double now) {
     renderer.set_paused(s.paused);
   }
   if (req.toggle_denoised) s.denoised_view = !s.denoised_view;
+  if (req.toggle_panel) s.panel_mode = toggle_panel(s.panel_visible);
+  if (req.toggle_readout) s.readout_on = !s.readout_on;
   if (req.save) save();
   if (req.hold) hold();
   if (req.print_camera) {
@@ -336,6 +375,7 @@ void init_state(ViewerState& s, const Scene& scene, const std::string& path) {
   s.scene_path = path;
   try {
     s.scene_names = list_scenes();
+    s.bundled_scene = bundled_name(s.scene_names, path);
   } catch (const std::exception& e) {
     s.message = e.what();
     s.message_is_error = true;

@@ -53,6 +53,10 @@ struct Controller {
   // display units if s.save_display_units) into s.save_dir, under a name
   // that overwrites nothing.
   void save();
+  // Stops the render at Sampling > stop at (its target becomes the samples
+  // it has), once a generation; lets it go on when the limit is raised or
+  // switched off before the target is raised.
+  void stop_when_reached();
   // Keeps the current image for the A/B comparison.
   void hold();
   // Carries out the panel's and the keys' requests, except quitting.

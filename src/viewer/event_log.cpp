@@ -29,6 +29,27 @@ void EventLog::frame(const ViewerState& s, double t0, double t_shown, std::uint6
     if (!s.pending_load.empty()) std::fprintf(f_, "ask t=%.6f load=%s\n", t0, s.pending_load.c_str());
     pending_load_ = s.pending_load;
   }
+  if (const std::string choice = scene_choice(s); choice != scene_choice_) {
+    std::fprintf(f_, "scene t=%.6f text=%s\n", t0, choice.c_str());
+    scene_choice_ = choice;
+  }
+  if (!panel_logged_ || s.panel_visible != panel_visible_ || s.panel_overlay != panel_overlay_ ||
+      s.panel_width != panel_width_) {
+    std::fprintf(f_, "panel t=%.6f visible=%d overlay=%d width=%.1f\n", t0, int(s.panel_visible),
+                 int(s.panel_overlay), double(s.panel_width));
+    panel_logged_ = true;
+    panel_visible_ = s.panel_visible;
+    panel_overlay_ = s.panel_overlay;
+    panel_width_ = s.panel_width;
+  }
+  if (const std::string state = state_text(s); state != state_) {
+    std::fprintf(f_, "state t=%.6f text=%s\n", t0, state.c_str());
+    state_ = state;
+  }
+  if (tooltip_shown() != tip_) {
+    std::fprintf(f_, "tip t=%.6f text=%s\n", t0, tooltip_shown().c_str());
+    tip_ = tooltip_shown();
+  }
   if (s.light_outside != light_outside_) {
     std::fprintf(f_, "light-outside t=%.6f text=%s\n", t0, s.light_outside.c_str());
     light_outside_ = s.light_outside;

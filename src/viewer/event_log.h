@@ -4,6 +4,14 @@
 //   edit t=T gen=G                the settings changed (T: the frame that made it)
 //   message t=T text=...          the panel's message line changed to this
 //   ask t=T load=NAME             the panel asks "Discard the edits?" before loading
+//   scene t=T text=CHOICE         what the Scene dropdown says changed (scene_choice)
+//   panel t=T visible=V overlay=O width=W
+//                                 the panel's place changed: shown or not (Tab,
+//                                 a small window), over the image or beside
+//                                 it, its width in window units
+//   state t=T text=STATE          the panel's state changed (state_text:
+//                                 rendering, done: target reached, stopped: ...)
+//   tip t=T text=TEXT             the panel's tooltip changed to this ("": none)
 //   outside t=T text=WHY          the eye is outside the room or in an object
 //                                 (empty: back inside), as the panel says in red
 //   readout t=T box=X,Y,W,H text=LINE|LINE|...
@@ -43,7 +51,9 @@ class EventLog {
  private:
   std::FILE* f_ = nullptr;
   std::uint64_t generation_ = 0;
-  std::string message_, pending_load_, outside_, light_outside_;
+  std::string message_, pending_load_, outside_, light_outside_, scene_choice_, tip_, state_;
+  bool panel_logged_ = false, panel_visible_ = false, panel_overlay_ = false;
+  float panel_width_ = 0.0f;
 };
 
 }  // namespace whisker

@@ -22,6 +22,8 @@ void map_keys(const KeyPresses& keys, bool imgui_wants_keyboard, bool popup_open
   if (keys.s) req.save = true;
   if (keys.c) req.print_camera = true;
   if (keys.d) req.toggle_denoised = true;
+  if (keys.tab) req.toggle_panel = true;
+  if (keys.i) req.toggle_readout = true;
   if (keys.escape && !popup_open) req.quit = true;
   if (keys.undo) req.undo = true;
   if (keys.redo) req.redo = true;
@@ -70,6 +72,8 @@ KeyPresses keys_of(const std::vector<KeyPress>& presses) {
     if (p.key == GLFW_KEY_C) k.c = true;
     if (p.key == GLFW_KEY_D) k.d = true;
     if (p.key == GLFW_KEY_ESCAPE) k.escape = true;
+    if (p.key == GLFW_KEY_TAB) k.tab = true;
+    if (p.key == GLFW_KEY_I) k.i = true;
   }
   return k;
 }

@@ -19,6 +19,8 @@ struct KeyPresses {
   bool c = false;       // print the camera as JSON
   bool d = false;       // raw or denoised image
   bool escape = false;  // close the open popup, else quit
+  bool tab = false;     // hide or show the panel
+  bool i = false;       // hide or show the pixel readout
   bool undo = false;    // Ctrl+Z
   bool redo = false;    // Ctrl+Y or Ctrl+Shift+Z
 };

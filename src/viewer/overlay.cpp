@@ -110,6 +110,17 @@ void pixel_readout(const ViewerState& s, const ImageArea& a, ReadoutShown& shown
   shown = {true, pos.x, pos.y, size.x, size.y, lines};
 }
 
+// With the panel out of the way, one dim line says how to bring it back.
+void panel_hint(const ImageArea& a) {
+  const char* text = "panel hidden: Tab shows it";
+  ImDrawList* dl = ImGui::GetForegroundDrawList();
+  const ImVec2 size = ImGui::CalcTextSize(text);
+  const ImVec2 p0(a.x + 6.0f, a.y + 6.0f);
+  dl->AddRectFilled(ImVec2(p0.x - 3, p0.y - 2), ImVec2(p0.x + size.x + 3, p0.y + size.y + 2),
+                    IM_COL32(0, 0, 0, 150), 3.0f);
+  dl->AddText(p0, IM_COL32(200, 200, 200, 255), text);
+}
+
 }  // namespace
 
 void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool readout,
@@ -118,6 +129,7 @@ void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool reado
   ReadoutShown& out = shown ? *shown : none;
   out = ReadoutShown{};
   if (area.w <= 0 || area.h <= 0) return;
+  if (!s.panel_visible) panel_hint(area);
   if (s.display.mode == kViewNoise) noise_legend(area);
   if (s.display.mode >= kViewNormals) {
     debug_legend_box(s, area);

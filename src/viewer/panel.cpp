@@ -37,7 +37,7 @@ static bool material_editor(Material& m, float* radius, float* inner_radius) {
       *inner_radius = 0.98f * *radius;
   }
   if (m.kind == MaterialKind::Diffuse)
-    changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float);
+    changed |= ImGui::ColorEdit3("albedo", &m.albedo.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_NoTooltip);
   if (m.kind == MaterialKind::Diffuse) tip("Fraction of light reflected, per colour channel.");
   if (is_glass(m.kind))
     changed |= ImGui::DragFloat("refractive index", &m.ior, 0.005f, 1.0f, 3.0f, "%.3f",
@@ -60,7 +60,7 @@ static void setting_checkboxes(RenderSettings& r) {
     if (const auto* m = std::get_if<bool RenderSettings::*>(&f.member)) {
       if (boxes++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f);
       ImGui::Checkbox(f.label ? f.label : f.key, &(r.*(*m)));
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help);
+      tip(f.help);
     }
   }
 }
@@ -93,17 +93,21 @@ static void display_section(ViewerState& s) {
     s.display.tonemap = 0;
   }
   tip("Back to exposure 0, gamma 2.2, report tone curve, image view.");
+  ImGui::SameLine();
+  ImGui::Checkbox("pixel readout (I)", &s.readout_on);
+  tip("The box over the image with the radiance, error and samples of the pixel under the "
+      "pointer. It sits beside the pointer, on the side away from the image's centre.");
 }
 
 static void scene_section(ViewerState& s, PanelRequests& req) {
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  if (ImGui::BeginCombo("bundled", s.scene_label.c_str())) {
+  if (ImGui::BeginCombo("bundled", scene_choice(s).c_str())) {
     for (const std::string& name : s.scene_names)
-      if (ImGui::Selectable(name.c_str(), name == s.scene_label)) req.load_scene = name;
+      if (ImGui::Selectable(name.c_str(), name == s.bundled_scene)) req.load_scene = name;
     ImGui::EndCombo();
   }
   tip("The scenes that come with Whisker (assets/scenes). Loading one replaces the "
-      "current scene and its settings.");
+      "current scene and its settings. 'file: NAME': the scene came from another file.");
   const bool enter = ImGui::InputText("path", &s.path_field,
                                       ImGuiInputTextFlags_EnterReturnsTrue);
   tip("A scene file (.json) to load: type or paste the path, then Enter or Load.");
@@ -210,6 +214,27 @@ static void threads_slider(ViewerState& s, PanelRequests& req) {
   if (!ImGui::IsItemActive() && req.threads == 0) s.threads_edit = s.threads;
 }
 
+// Stop at a noise level or after a time: one line, applied when a field
+// lets go of the keyboard.
+static void stop_fields(ViewerState& s) {
+  const float scale = ImGui::GetIO().FontGlobalScale;
+  ImGui::AlignTextToFramePadding();
+  ImGui::TextUnformatted("stop at");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(56.0f * scale);
+  ImGui::InputFloat("% noise or##stopnoise", &s.stop_noise_field, 0.0f, 0.0f, "%g");
+  if (!ImGui::IsItemActive()) s.stop_noise_field = s.stop_noise_pct = std::max(0.0f, s.stop_noise_field);
+  tip("Stop this render once its noise (the line at the top, % of the mean) is at most this; "
+      "0: never. An edit starts a new render, which stops there too. Raise 'target spp' or "
+      "set 0 here to go on.");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(56.0f * scale);
+  ImGui::InputFloat("s (0: off)##stopseconds", &s.stop_seconds_field, 0.0f, 0.0f, "%g");
+  if (!ImGui::IsItemActive()) s.stop_seconds_field = s.stop_seconds = std::max(0.0f, s.stop_seconds_field);
+  tip("Stop this render after this many seconds of render time (the 'elapsed' clock); 0: never. "
+      "An edit starts a new render, which gets as long again.");
+}
+
 static bool scene_has_glass(const Scene& e) {
   const auto glass = [](const Material& m) {
     return is_glass(m.kind);
@@ -262,6 +287,7 @@ static void sampling_section(ViewerState& s, PanelRequests& req) {
   tip("Stop at this many samples per pixel (0 = never stop). A typed number applies on "
       "Enter; raising it, or +, carries on from the current image.");
   threads_slider(s, req);
+  stop_fields(s);
 }
 
 static void bookmarks(const ViewerState& s, PanelRequests& req) {
@@ -333,6 +359,13 @@ static void outside_warning(const char* what, const char* thing, const std::stri
 
 void draw_panel(ViewerState& s, float window_w, float window_h, float panel_w,
                 double now, PanelRequests& req) {
+  tooltips_frame();
+  if (panel_w <= 0.0f) {
+    // Hidden (Tab, or a window too small for it): its questions still ask.
+    confirm_load_popup(s, req);
+    confirm_quit_popup(s, req);
+    return;
+  }
   ImGui::SetNextWindowPos(ImVec2(window_w - panel_w, 0.0f));
   ImGui::SetNextWindowSize(ImVec2(panel_w, window_h));
   ImGui::Begin("Whisker", nullptr,

@@ -8,8 +8,12 @@
 
 namespace whisker {
 
-// A plain-language tooltip for the last widget (also when it is disabled).
+// A plain-language tooltip for the last widget (also when it is disabled),
+// once the pointer has rested on it (viewer/hover_delay.h).
 void tip(const char* text);
+// Before the frame's widgets: where the pointer is and whether a button is
+// down, for tip().
+void tooltips_frame();
 
 // State, progress toward the target, speed, error and its plot: a fixed
 // number of lines, so nothing below moves while it renders. Returns the

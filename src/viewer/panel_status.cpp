@@ -6,13 +6,36 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
+#include "viewer/hover_delay.h"
 #include "viewer/panel_parts.h"
 #include "viewer/readout.h"
 
 namespace whisker {
 
+namespace {
+HoverDelay g_hover;
+std::string g_tip_shown;  // this frame's tooltip, for the event log
+}  // namespace
+
+const std::string& tooltip_shown() { return g_tip_shown; }
+
+void tooltips_frame() {
+  g_tip_shown.clear();
+  const ImGuiIO& io = ImGui::GetIO();
+  g_hover.begin_frame(ImGui::GetTime(), io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f,
+                      ImGui::IsAnyMouseDown());
+}
+
+bool tooltip_waiting() { return g_hover.waiting(); }
+
 void tip(const char* text) {
   if (!ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled)) return;
+  // The widget's place tells it from the others.
+  const ImVec2 a = ImGui::GetItemRectMin();
+  const auto key = (static_cast<unsigned long long>(std::lround(a.x * 4.0f)) << 32) ^
+                   static_cast<unsigned long long>(std::lround(a.y * 4.0f));
+  if (!g_hover.due(key)) return;
+  g_tip_shown = text;
   ImGui::BeginTooltip();
   ImGui::PushTextWrapPos(ImGui::GetFontSize() * 24.0f);
   ImGui::TextUnformatted(text);
@@ -35,9 +58,12 @@ std::string human(double v) {
   return buf;
 }
 
+}  // namespace
+
 std::string state_text(const ViewerState& s) {
   const Snapshot& sn = s.snap;
   if (s.paused) return "paused";
+  if (s.stopped_gen == s.generation && !s.stop_note.empty()) return "stopped: " + s.stop_note;
   if (sn.done && sn.generation == s.generation) return deterministic_estimate(s.applied) ? "done: exact" : "done: target reached";
   // Quick passes after an edit (viewer/blend.h): full resolution, one path a sample.
   if (s.shown.quick_spp > 0 && s.shown.own_spp == 0)
@@ -46,8 +72,6 @@ std::string state_text(const ViewerState& s) {
     return "rendering (+" + std::to_string(s.shown.quick_spp) + " fast spp)";
   return "rendering";
 }
-
-}  // namespace
 
 std::uint64_t shown_spp(const ViewerState& s) {
   const Snapshot& sn = s.snap;

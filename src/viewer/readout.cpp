@@ -82,10 +82,27 @@ std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool
   return lines;
 }
 
+std::string stop_reason(double rse, double seconds, float noise_pct, float max_seconds) {
+  char text[64];
+  if (noise_pct > 0.0f && std::isfinite(rse) && 100.0 * rse <= noise_pct) {
+    std::snprintf(text, sizeof text, "noise %.3g %% reached", double(noise_pct));
+    return text;
+  }
+  if (max_seconds > 0.0f && seconds >= max_seconds) return format_duration(max_seconds) + " reached";
+  return {};
+}
+
 BoxPlace place_readout(float mx, float my, float w, float h, float ax, float ay, float aw, float ah) {
-  BoxPlace p{mx + 16.0f, my + 8.0f};
-  if (p.x + w > ax + aw) p.x = std::max(ax, mx - 8.0f - w);
-  if (p.y + h > ay + ah) p.y = std::max(ay, my - 8.0f - h);
+  // Away from the image's centre on each axis, beside the pointer; the other
+  // side where that leaves the image.
+  const float right_x = mx + 16.0f, left_x = mx - 8.0f - w;
+  const float below_y = my + 8.0f, above_y = my - 8.0f - h;
+  const bool go_right = mx >= ax + 0.5f * aw, go_down = my >= ay + 0.5f * ah;
+  BoxPlace p{go_right ? right_x : left_x, go_down ? below_y : above_y};
+  if (p.x + w > ax + aw) p.x = std::max(ax, left_x);
+  if (p.x < ax) p.x = std::min(right_x, std::max(ax, ax + aw - w));
+  if (p.y + h > ay + ah) p.y = std::max(ay, above_y);
+  if (p.y < ay) p.y = std::min(below_y, std::max(ay, ay + ah - h));
   return p;
 }
 

@@ -39,6 +39,12 @@ ProgressInfo estimate_progress(const ProgressInput& in);
 // "1h 02m", "3m 05s", "12.3 s" (as the headless progress line).
 std::string format_duration(double seconds);
 
+// Why a render stops before its target (Sampling > stop at): "noise 2 %
+// reached" once the relative standard error `rse` is at most noise_pct
+// percent, "10.0 s reached" once its render time is max_seconds; "" while
+// neither is (a limit of 0 is off; an unknown error, NaN, is not low).
+std::string stop_reason(double rse, double seconds, float noise_pct, float max_seconds);
+
 // Pixel (x, y) of a snapshot: mean radiance and the standard error of its
 // luminance mean (from the per-pixel sums of squares).
 struct PixelReadout {
@@ -55,9 +61,11 @@ PixelReadout read_pixel(const Snapshot& s, int x, int y);
 std::vector<std::string> readout_lines(const PixelReadout& r, int x, int y, bool held);
 
 // Where a box of w x h (the readout) goes for the mouse at (mx, my), all in
-// window units: below right of the pointer, flipped left of it (above it)
-// where it would leave the image area (ax, ay, aw, ah) on the right (at the
-// bottom), so it never covers the panel beside the image.
+// window units: beside the pointer on the side away from the centre of the
+// image area (ax, ay, aw, ah), on each axis (right of the pointer in the
+// right half, above it in the top half, ...), so it leaves the middle of the
+// image (the subject) in view; on the other side where it would leave the
+// area, so it never covers the panel beside the image.
 struct BoxPlace {
   float x = 0, y = 0;
 };

@@ -41,6 +41,7 @@ namespace {
 
 
 constexpr float kPanelWidth = 400.0f;  // window coordinates, before content scale
+constexpr float kMinPanelWidth = 280.0f;  // the narrowest it gets in a small window
 
 // The state of the open window between frames, and the steps of one frame.
 struct Session {
@@ -136,14 +137,21 @@ struct Session {
     PanelRequests req;
     s.progress = renderer.pass_progress();
     update_debug_view();
-    const float panel = std::min(panel_w, f.win_w);
-    draw_panel(s, f.win_w, f.win_h, panel, t0, req);
-
-    // The render area is what the panel leaves, in framebuffer pixels.
-    const int panel_fb = int(std::lround(panel * f.fb_per_win));
-    const PixelRect area{0, 0, std::max(0, f.fb_w - panel_fb), f.fb_h};
     const int img_w = display.width() ? display.width() : s.applied.camera.width;
     const int img_h = display.height() ? display.height() : s.applied.camera.height;
+    // The panel narrows, or steps aside, so that a small window still shows
+    // the image as large as it can (viewer/layout.h).
+    const PanelLayout lay = layout_panel(s.panel_mode, f.win_w, f.win_h, img_w / f.fb_per_win,
+                                         img_h / f.fb_per_win, panel_w, kMinPanelWidth * panel_w / kPanelWidth);
+    s.panel_visible = lay.visible;
+    s.panel_overlay = lay.overlay;
+    s.panel_width = lay.width;
+    draw_panel(s, f.win_w, f.win_h, lay.width, t0, req);
+    if (tooltip_waiting()) request_redraw();  // the tooltip shows when the rest is long enough
+
+    // The render area is what the panel leaves, in framebuffer pixels.
+    const int panel_fb = lay.overlay ? 0 : int(std::lround(lay.width * f.fb_per_win));
+    const PixelRect area{0, 0, std::max(0, f.fb_w - panel_fb), f.fb_h};
     const PixelRect rect = fit_image(area, img_w, img_h);
 
     map_keys(read_keys(), imgui_wants_keyboard(), imgui_popup_open(), req);
@@ -188,7 +196,7 @@ struct Session {
     // scripted screenshot, which compares with the headless render).
     image_area = {rect.x / f.fb_per_win, rect.y / f.fb_per_win, rect.w / f.fb_per_win,
                   rect.h / f.fb_per_win};
-    draw_image_overlays(s, image_area, opt.screenshot_path.empty(), &readout);
+    draw_image_overlays(s, image_area, opt.screenshot_path.empty() && s.readout_on, &readout);
     // Switching to the noise view needs the sums of squares on the GPU.
     if ((s.display.mode == kViewNoise) != uploaded_mode) upload_image();
     return rect;
@@ -306,6 +314,7 @@ struct Session {
     while (!should_close()) {
       const double t0 = wait_for_events();
       bool fresh = take_snapshot();
+      ctl.stop_when_reached();
       ask_denoiser();
       if (denoiser.latest(s.denoised, s.denoised_figures) || showing_denoised(s) != uploaded_denoised) {
         upload_image();

@@ -14,6 +14,7 @@
 #include "viewer/denoised_view.h"
 #include "viewer/display.h"
 #include "viewer/history.h"
+#include "viewer/layout.h"
 
 namespace whisker {
 
@@ -43,6 +44,8 @@ struct PanelRequests {
   bool confirm_load = false;  // discard the edits and load s.pending_load
   bool close_popups = false;  // Esc with a dropdown or a question open
   bool confirm_quit = false;  // discard the edits and quit
+  bool toggle_panel = false;    // Tab: hide or show the panel
+  bool toggle_readout = false;  // I: hide or show the pixel readout
 };
 
 // The A/B comparison: an image held back, shown instead of or beside the
@@ -55,6 +58,9 @@ struct ViewerState {
   Scene edited;    // the panel's working copy; compared with `applied`
   std::string scene_label;
   std::vector<std::string> scene_names;
+  // The bundled scene (of scene_names) the current one was loaded from;
+  // empty for any other file, which the dropdown then names.
+  std::string bundled_scene;
   std::string path_field;
   std::string scene_path;  // the file the current scene came from
   std::string save_dir = ".";
@@ -81,6 +87,12 @@ struct ViewerState {
 
   float exposure_stops = 0.0f;  // relative to the report's mapping
   DisplayParams display;
+  bool readout_on = true;  // the pixel readout over the image (I)
+
+  PanelMode panel_mode = PanelMode::Auto;  // Tab
+  bool panel_visible = true;               // as drawn last frame
+  bool panel_overlay = false;              // over the image (a small window)
+  float panel_width = 0.0f;                // window units
 
   EditHistory history;
   std::vector<Camera> bookmarks;
@@ -110,6 +122,14 @@ struct ViewerState {
   int compare = kCompareOff;
   float wipe = 0.5f;      // held image left of this fraction of the width
 
+  // Sampling > stop at: a render stops once its noise (percent of the mean)
+  // or its render time (seconds) reaches these (0: off); the next render,
+  // after an edit, starts as ever and stops at them too.
+  float stop_noise_pct = 0.0f, stop_seconds = 0.0f;
+  float stop_noise_field = 0.0f, stop_seconds_field = 0.0f;  // as being typed
+  std::uint64_t stopped_gen = 0;  // the generation stopped (or let go on) by them
+  std::string stop_note;          // why it stopped ("noise 2 % reached"); "" once let go on
+
   std::uint64_t bar_spp = 0;  // the samples per pixel the panel's bar said last frame
 
   // The mean UI frame time (ms) of the last frames, for the panel.
@@ -117,9 +137,25 @@ struct ViewerState {
 };
 
 // Draws the panel at the right edge of a window of `window_w` x `window_h`
-// (window coordinates), `panel_w` wide; edits state.edited and fills `req`.
+// (window coordinates), `panel_w` wide (0: hidden, only its questions show);
+// edits state.edited and fills `req`.
 void draw_panel(ViewerState& state, float window_w, float window_h, float panel_w,
                 double now, PanelRequests& req);
+
+// What the Scene dropdown says: the bundled scene's name, or "file: NAME"
+// for a scene loaded from any other file (a saved, edited scene keeps the
+// name of the scene it came from, so its name alone would say "cat").
+std::string scene_choice(const ViewerState& state);
+
+// The panel's first line after the scene and size: "rendering", "paused",
+// "done: target reached", "stopped: noise 2 % reached", ...
+std::string state_text(const ViewerState& state);
+
+// Whether a hovered widget waits for the pointer to rest before its tooltip
+// shows: the window then draws frames until it does.
+bool tooltip_waiting();
+// The text of the tooltip shown this frame ("" for none).
+const std::string& tooltip_shown();
 
 // The samples per pixel that the window's title and the panel's progress
 // bar both say: the current settings' own published passes (0 until the

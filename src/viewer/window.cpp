@@ -74,7 +74,11 @@ void install_redraw_callbacks(GLFWwindow* w) {
   glfwSetKeyCallback(w, [](GLFWwindow*, int key, int, int action, int mods) {
     // Every press, in order, even one released before the next frame:
     // the shortcuts read these rather than ImGui's per-frame key state.
-    if (action == GLFW_PRESS || action == GLFW_REPEAT) g_key_presses.push_back({key, mods, action == GLFW_REPEAT});
+    // A Tab reaches here only while a field is typed into (ImGuiSession's
+    // callback keeps the others from ImGui and queues them itself): it is
+    // the field's, never the panel's shortcut.
+    if (key != GLFW_KEY_TAB && (action == GLFW_PRESS || action == GLFW_REPEAT))
+      g_key_presses.push_back({key, mods, action == GLFW_REPEAT});
     mark_redraw();
   });
   glfwSetCharCallback(w, [](GLFWwindow*, unsigned) { mark_redraw(); });
@@ -197,6 +201,18 @@ ImGuiSession::ImGuiSession(GLFWwindow* window) {
   install_redraw_callbacks(window);
   g_redraw = 3;
   ImGui_ImplGlfw_InitForOpenGL(window, true);
+  // Tab with no widget active is the viewer's (hide or show the panel):
+  // ImGui would take it to put the first text field of the panel in edit
+  // mode. Its backend's callback calls the one installed above, which
+  // queues the press for the shortcuts; here only a lone Tab skips ImGui.
+  glfwSetKeyCallback(window, [](GLFWwindow* win, int key, int scancode, int action, int mods) {
+    if (key == GLFW_KEY_TAB && !ImGui::IsAnyItemActive()) {
+      if (action == GLFW_PRESS) g_key_presses.push_back({key, mods, false});
+      mark_redraw();
+      return;
+    }
+    ImGui_ImplGlfw_KeyCallback(win, key, scancode, action, mods);
+  });
   ImGui_ImplOpenGL3_Init("#version 330");
 }
 
