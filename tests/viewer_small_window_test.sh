@@ -4,8 +4,9 @@
 # screenshots (three balls, 512x512):
 #   U. the pointer rests on the light's position field when the window
 #      opens: no tooltip in its first three seconds. Moved onto Restart, its
-#      tooltip waits (none three frames later), then shows. A drag from the
-#      image onto Restart, held there: no tooltip while the button is down.
+#      tooltip waits (none three frames later), then shows. A drag of the
+#      light's intensity field resting on it, and a drag from the image onto
+#      Restart held there: no tooltip while the button is down.
 #   R. the readout near the image's centre (in each quarter) never covers
 #      the centre; I hides it (no readout while the pointer moves over the
 #      image), I shows it again.
@@ -22,8 +23,9 @@ set -u
 viewer_test_setup "$1" Xvfb xdotool xwd python3
 
 cat >"$dir/drive.sh" <<'INNER'
-# The 912x800 window: the light's position field, the Restart button.
-LIGHT_X=600 LIGHT_Y=451 RESTART_X=667 RESTART_Y=202
+# The 912x800 window: the light's position and intensity fields, the
+# Restart button.
+LIGHT_X=600 LIGHT_Y=451 POWER_X=645 POWER_Y=474 RESTART_X=667 RESTART_Y=202
 count() { grep -c "^$1 " "$log"; }
 resize() {  # w h: waits for the frame whose image area is given next
   xdotool windowsize "$wid" "$1" "$2"
@@ -38,11 +40,17 @@ U() {
   after_frames xdotool mousemove --window "$wid" $RESTART_X $RESTART_Y
   [ "$(grep '^tip ' "$log" | tail -n +$((n + 1)) | grep -c 'text=.')" = 0 ] && echo none >"$dir/U.early"
   log_wait "tips and tips[-1].startswith('Throw the samples away')" 20
-  # A drag from the image onto Restart, resting there with the button held.
+  # A drag of the light's intensity, resting on the field with the button
+  # held; then a drag from the image onto Restart, resting there.
+  move_to $POWER_X $POWER_Y; after_frames xdotool mousedown 1
+  for k in 1 2 3; do after_frames xdotool mousemove --window "$wid" $(( POWER_X + 8 * k )) $POWER_Y; done
+  sleep 1.5; after_frames true
+  grep '^tip ' "$log" | tail -1 >"$dir/U.held"  # the tooltip shown now
+  after_frames xdotool mouseup 1
   move_to 256 500; after_frames xdotool mousedown 1
   for k in 1 2 3; do after_frames xdotool mousemove --window "$wid" $(( 256 + (RESTART_X - 256) * k / 3 )) $(( 500 + (RESTART_Y - 500) * k / 3 )); done
-  n=$(count tip); sleep 1.5; after_frames true
-  grep '^tip ' "$log" | tail -n +$((n + 1)) >"$dir/U.held"
+  sleep 1.5; after_frames true
+  grep '^tip ' "$log" | tail -1 >>"$dir/U.held"
   after_frames xdotool mouseup 1
   quit_viewer U
 }
@@ -121,7 +129,8 @@ check "every wait for the window was met in time" '[ ! -s "$dir/waits.err" ]'
 check "U: no tooltip in the first three seconds under a pointer that had not moved" '[ "$(cat "$dir/U.startup")" = 0 ]'
 check "U: moved onto Restart, no tooltip three frames later" '[ "$(cat "$dir/U.early" 2>/dev/null)" = none ]'
 check "U: then the Restart tooltip" 'grep -q "^tip .*text=Throw the samples away" "$dir/U.log"'
-check "U: no tooltip while the button is held over Restart" '! grep -q "text=." "$dir/U.held"'
+check "U: no tooltip while a drag holds the button on the light's intensity or over Restart" \
+  '[ "$(wc -l <"$dir/U.held")" = 2 ] && ! grep -q "text=." "$dir/U.held"'
 check "U, R, W: the viewer quit with exit 0" 'for s in U R W; do grep -q "^exit 0$" "$dir/$s.err" || exit 1; done'
 check "R: no readout box covers the image's centre" 'p readout'
 check "R: with I no readout while the pointer moves over the image" '[ "$(cat "$dir/R.hidden")" = 0 ]'
