@@ -91,6 +91,7 @@ THREADS=${THREADS:-2}
 SCALES=${SCALES:-"1 2 4 8 16"}
 TOLERANCE=${TOLERANCE:-0.1}
 OUT=${CAT_OUT:-$BUILD/cat-target}
+mkdir -p "$OUT" && OUT=$(cd "$OUT" && pwd)  # absolute: the report program runs from its own folder
 
 cmake --build "$BUILD" -j 2 --target whisker whisker-compare >/dev/null
 mkdir -p "$OUT/bin"
