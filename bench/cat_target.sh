@@ -36,6 +36,22 @@
 #    seeds); that count's time (the line of step 3) against the report
 #    program's.
 #
+# The denoised copies (DENOISE=1): CONFIGS become the defaults raw and with
+# --out-denoised by each filter (an estimator whose flags hold --denoiser is
+# timed render + filter in one process, and its image is the denoised copy).
+# A denoised copy is biased, so the two seeds' difference no longer gives its
+# error: every estimator (raw too) is measured against a converged reference
+# instead, the mean of two renders of REF_SPP samples (REF_SEEDS, cached in
+# $BUILD/references/), its own noise (a quarter of the MSE between the two)
+# subtracted, bias included (time_to_error.py reference). Then, per filter,
+# the denoised MSE over the raw at equal samples, the denoised headline
+# against the 200x goal, and the denoiser's own estimate against the true
+# error (bench/denoise_error.py on a render of ESTIMATE_SPP with --sampler
+# independent, which the estimate needs). The check render stays the raw
+# defaults'.
+#
+#   DENOISE=1 CHECK_SEEDS= bench/cat_target.sh   # ~9 minutes, references apart
+#
 # CONFIGS: estimators separated by ';', each "name|whisker flags|spp counts".
 # The first is the defaults (the scene's settings). The script exits 1 when
 # the defaults reach the target later than another of them at any scale by
@@ -47,7 +63,9 @@
 # (more pairs for the target and the check render, "303 404 505 606 707
 # 808"; empty: SEEDS alone), THREADS (2),
 # SCALES ("1 2 4 8 16"), TOLERANCE, CAT_OUT (output dir, default
-# $BUILD/cat-target; every image and JSON stays there).
+# $BUILD/cat-target; every image and JSON stays there), DENOISE (0),
+# REF_SPP (512), REF_SEEDS ("9001 9002": two, none of SEEDS or CHECK_SEEDS),
+# ESTIMATE_SPP (16). The FAIL rule below compares raw estimators only.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -56,7 +74,15 @@ BUILD=${WHISKER_BUILD:-$ROOT/build}
 REPORT_SPP=${REPORT_SPP:-16}
 REPORT_SMALL=${REPORT_SMALL:-2}
 REPORT_FULL=${REPORT_FULL:-0}
-CONFIGS=${CONFIGS:-"defaults||16 32;no-connect|--connect off|24 48"}
+DENOISE=${DENOISE:-0}
+if [ "$DENOISE" = 1 ]; then
+  CONFIGS=${CONFIGS:-"defaults||16 32;fast|--denoiser fast|8 16 32;quality|--denoiser quality|8 16 32"}
+else
+  CONFIGS=${CONFIGS:-"defaults||16 32;no-connect|--connect off|24 48"}
+fi
+REF_SPP=${REF_SPP:-512}
+read -r REF_A REF_B <<<"${REF_SEEDS:-9001 9002}"
+ESTIMATE_SPP=${ESTIMATE_SPP:-16}
 read -r SEED_A SEED_B <<<"${SEEDS:-101 202}"
 CHECK_SEEDS=${CHECK_SEEDS-303 404 505 606 707 808}
 read -r -a EXTRA <<<"$CHECK_SEEDS"
@@ -65,6 +91,7 @@ THREADS=${THREADS:-2}
 SCALES=${SCALES:-"1 2 4 8 16"}
 TOLERANCE=${TOLERANCE:-0.1}
 OUT=${CAT_OUT:-$BUILD/cat-target}
+mkdir -p "$OUT" && OUT=$(cd "$OUT" && pwd)  # absolute: the report program runs from its own folder
 
 cmake --build "$BUILD" -j 2 --target whisker whisker-compare >/dev/null
 mkdir -p "$OUT/bin"
@@ -77,19 +104,39 @@ report_program_build "$OUT"
 
 seconds_since() { python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.3f}')" "$1" "$(date +%s.%N)"; }
 
-# render TAG SPP SEED FLAGS... -> prints the wall seconds of the whole process
+# render TAG SPP SEED FLAGS... -> prints the wall seconds of the whole process.
+# Flags with --denoiser: TAG-SEED.pfm is the denoised copy, TAG-SEED-raw.pfm
+# the raw image of the same process.
 render() {
-  local tag=$1 spp=$2 seed=$3 t0
+  local tag=$1 spp=$2 seed=$3 t0 outs
   shift 3
+  outs=(--out-float "$OUT/$tag-$seed.pfm")
+  [[ " $* " == *" --denoiser "* ]] && outs=(--out-float "$OUT/$tag-$seed-raw.pfm" --out-denoised "$OUT/$tag-$seed.pfm")
   t0=$(date +%s.%N)
   # shellcheck disable=SC2068
   "$WHISKER" --headless --scene cat --frames 1 --spp "$spp" --seed "$seed" \
-    --threads "$THREADS" --quiet --out-float "$OUT/$tag-$seed.pfm" $@ >/dev/null
+    --threads "$THREADS" --quiet "${outs[@]}" $@ >/dev/null
   seconds_since "$t0"
 }
 
 echo "machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "commit: $(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+scales_csv=$(tr ' ' ',' <<<"$SCALES")
+
+# The converged reference (DENOISE=1): rendered once, cached, not timed.
+if [ "$DENOISE" = 1 ]; then
+  mkdir -p "$BUILD/references"
+  for seed in "$REF_A" "$REF_B"; do
+    ref=$BUILD/references/cat-$REF_SPP-seed$seed.pfm
+    [ -f "$ref" ] || { "$WHISKER" --headless --quiet --scene cat --target-spp "$REF_SPP" --seed "$seed" \
+      --threads "$THREADS" --out-float "$ref.part.pfm" >/dev/null && mv "$ref.part.pfm" "$ref"; }
+  done
+  REF1=$BUILD/references/cat-$REF_SPP-seed$REF_A.pfm
+  REF2=$BUILD/references/cat-$REF_SPP-seed$REF_B.pfm
+  python3 "$ROOT/bench/pfm.py" mean "$REF1" "$REF2" "$OUT/reference.pfm"
+  "$COMPARE" "$REF1" "$REF2" --scales "$scales_csv" --json "$OUT/reference-pair.json" >/dev/null
+  echo "reference: the mean of 2 x $REF_SPP spp (seeds $REF_A, $REF_B), its own MSE subtracted"
+fi
 
 IFS=';' read -r -a CONFIG_LIST <<<"$CONFIGS"
 TIMES=$OUT/times.txt
@@ -127,21 +174,43 @@ if [ "$REPORT_FULL" = 1 ]; then
   echo "report 1024 $SEED_A $(report_program_run "$REPORT_CAT" 1024 "$SEED_A" "$OUT/report-1024-$SEED_A.pfm")" >>"$TIMES"
 fi
 
-# The MSE of one image, per scale, for every (estimator, count).
-scales_csv=$(tr ' ' ',' <<<"$SCALES")
+# The MSE of one image, per scale, for every (estimator, count): from the
+# two seeds' difference, or (DENOISE=1) against the reference.
 "$COMPARE" "$OUT/report-$REPORT_SPP-$SEED_A.pfm" "$OUT/report-$REPORT_SPP-$SEED_B.pfm" \
   --scales "$scales_csv" --json "$OUT/report-$REPORT_SPP.json" >/dev/null
 compare_pairs "report-$REPORT_SPP"
 for config in "${CONFIG_LIST[@]}"; do
   IFS='|' read -r name flags counts <<<"$config"
   for spp in $counts; do
-    "$COMPARE" "$OUT/$name-$spp-$SEED_A.pfm" "$OUT/$name-$spp-$SEED_B.pfm" \
-      --scales "$scales_csv" --json "$OUT/$name-$spp.json" >/dev/null
+    if [ "$DENOISE" = 1 ]; then
+      for seed in "$SEED_A" "$SEED_B"; do
+        "$COMPARE" "$OUT/$name-$spp-$seed.pfm" "$OUT/reference.pfm" \
+          --scales "$scales_csv" --json "$OUT/$name-$spp-$seed.ref.json" >/dev/null
+      done
+      python3 "$ROOT/bench/time_to_error.py" reference "$OUT/$name-$spp.json" "$OUT/reference-pair.json" \
+        "$OUT/$name-$spp-$SEED_A.ref.json" "$OUT/$name-$spp-$SEED_B.ref.json"
+    else
+      "$COMPARE" "$OUT/$name-$spp-$SEED_A.pfm" "$OUT/$name-$spp-$SEED_B.pfm" \
+        --scales "$scales_csv" --json "$OUT/$name-$spp.json" >/dev/null
+    fi
   done
 done
 status=0
 python3 "$ROOT/bench/time_to_error.py" "$OUT" "$TIMES" "$CONFIGS" "$SCALES" \
   "$REPORT_SPP" "$REPORT_SMALL" "$REPORT_FULL" "$TOLERANCE" || status=$?
+
+# The denoiser's own estimate against the true error, per filter (the
+# estimate needs independent halves: --sampler independent).
+if [ "$DENOISE" = 1 ]; then
+  for filter in fast quality; do
+    echo "--- the $filter filter's estimate, $ESTIMATE_SPP spp, --sampler independent, seed $SEED_A"
+    "$WHISKER" --headless --scene cat --frames 1 --spp "$ESTIMATE_SPP" --seed "$SEED_A" --threads "$THREADS" \
+      --quiet --sampler independent --out-float "$OUT/estimate-$filter-raw.pfm" \
+      --out-denoised "$OUT/estimate-$filter.pfm" --denoiser "$filter" --stats "$OUT/estimate-$filter.json" >/dev/null
+    python3 "$ROOT/bench/denoise_error.py" "$REF1" "$REF2" "$OUT/estimate-$filter-raw.pfm" \
+      "$OUT/estimate-$filter.pfm" "$OUT/estimate-$filter.json"
+  done
+fi
 
 # The check render: the interpolated count is only an estimate (the Sobol
 # points are best stratified at powers of two, so 28 spp lie above the line
