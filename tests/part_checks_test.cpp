@@ -14,6 +14,7 @@
 #include "io/accumulation_io.h"
 #include "same_bits.h"
 #include "temp_dir.h"
+#include "test_random.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -26,11 +27,8 @@ Accumulation synthetic_part(int w, int h, SampleRange range, unsigned seed) {
   Accumulation a;
   a.width = w;
   a.height = h;
-  std::uint64_t x = 0x9e3779b97f4a7c15ull * (seed + 1);
-  const auto next = [&] {
-    x ^= x >> 12, x ^= x << 25, x ^= x >> 27;  // xorshift64* (Marsaglia)
-    return double((x * 0x2545f4914f6cdd1dull) >> 11) * 0x1p-53;
-  };
+  TestRandom random(seed);
+  const auto next = [&] { return random.next(); };
   for (int k = 0; k < 3 * w * h; ++k) a.sum.push_back(next() * 40.0);
   for (int k = 0; k < w * h; ++k) a.sum_sq.push_back(next() * 900.0);
   a.ranges = {range};

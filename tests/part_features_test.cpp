@@ -19,6 +19,7 @@
 #include "run_whisker.h"
 #include "same_bits.h"
 #include "temp_dir.h"
+#include "test_random.h"
 
 namespace fs = std::filesystem;
 using namespace whisker;
@@ -31,11 +32,8 @@ Accumulation part_with_features(int w, int h, SampleRange range, unsigned seed) 
   Accumulation a;
   a.width = w;
   a.height = h;
-  std::uint64_t x = 0x9e3779b97f4a7c15ull * (seed + 1);
-  const auto next = [&] {
-    x ^= x >> 12, x ^= x << 25, x ^= x >> 27;  // xorshift64* (Marsaglia)
-    return double((x * 0x2545f4914f6cdd1dull) >> 11) * 0x1p-53;
-  };
+  TestRandom random(seed);
+  const auto next = [&] { return random.next(); };
   const std::size_t pixels = std::size_t(w) * std::size_t(h);
   for (std::size_t p = 0; p < pixels; ++p) {
     for (int c = 0; c < 3; ++c) a.sum.push_back(next() * 40.0);
