@@ -187,9 +187,6 @@ void Controller::load(const std::string& name_or_path, double now, bool confirme
   }
 }
 
-// The image the window shows, as a mean per pixel (spp 1): the live one, the
-// held one, or in a wipe the held one's columns left of the line (the same
-// whole columns as Display::draw_columns) and the live one's right of it.
 static const Snapshot& live_image(const ViewerState& s);
 
 Snapshot shown_means(const ViewerState& s) {
@@ -207,8 +204,9 @@ Snapshot shown_means(const ViewerState& s) {
   };
   if (held && s.compare == kCompareHeld) return means(s.held);
   Snapshot out = means(live);
-  if (held && s.compare == kCompareWipe) {
-    const Snapshot left = means(s.held);
+  const Snapshot* wiped = wipe_left(s);
+  if (wiped && wiped->width == live.width && wiped->height == live.height) {
+    const Snapshot left = means(*wiped);
     const int cols = int(std::lround(std::clamp(s.wipe, 0.0f, 1.0f) * float(live.width)));
     for (int y = 0; y < live.height; ++y)
       for (int x = 0; x < cols; ++x) {
@@ -264,8 +262,10 @@ void Controller::save() {
     const ImageAttributes record = viewer_record(s, own, display_units);
     write_float_image(base + float_ext, display_units ? display_referred(img) : img, record);
     const char* units = display_units ? " (display units: 1.0 = white)" : " (radiance)";
-    const bool wipe = !debug && s.held.spp > 0 && s.compare == kCompareWipe;
-    const char* as_shown = wipe ? " (as shown: held left, live right)" : " (as shown)";
+    const bool wipe = !debug && wipe_left(s);
+    const char* as_shown = !wipe ? " (as shown)"
+                           : s.compare == kCompareWipe ? " (as shown: held left, live right)"
+                                                       : " (as shown: raw left, denoised right)";
     std::string said = "saved " + base + ".png" + as_shown + " and " + base + float_ext + units +
                        (wipe ? " (live)" : "");
     if (stem != wanted) said += "; " + wanted + " was taken, so the name is " + stem;

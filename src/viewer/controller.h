@@ -19,6 +19,12 @@ std::string scene_label_of(const Scene& scene, const std::string& path);
 // replaces the current scene's meshes; anything else is refused with a message.
 void request_for_drop(const std::string& path, PanelRequests& req, std::string& error);
 
+// The image the window shows, as a mean per pixel (spp 1): the live one (raw
+// or denoised), the held one, or in a wipe the left image's columns left of
+// the line (wipe_left; the same whole columns as Display::draw_columns) and
+// the live one's right of it.
+Snapshot shown_means(const ViewerState& s);
+
 // The panel's state for the scene given on the command line, read from `path`.
 void init_state(ViewerState& s, const Scene& scene, const std::string& path);
 

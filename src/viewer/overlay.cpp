@@ -85,10 +85,10 @@ void pixel_readout(const ViewerState& s, const ImageArea& a, ReadoutShown& shown
   if (io.WantCaptureMouse || ImGui::IsAnyMouseDown() || a.w <= 0 || a.h <= 0) return;
   if (m.x < a.x || m.y < a.y || m.x >= a.x + a.w || m.y >= a.y + a.h) return;
   const float u = (m.x - a.x) / a.w;
-  const bool held = s.held.spp > 0 && (s.compare == kCompareHeld ||
-                                       (s.compare == kCompareWipe && u < s.wipe));
+  const Snapshot* left = u < s.wipe ? wipe_left(s) : nullptr;
+  const bool held = s.held.spp > 0 && (s.compare == kCompareHeld || left == &s.held);
   // The live side reads what is shown (quick passes combined, viewer/blend.h).
-  const Snapshot& sn = held ? s.held : s.shown.image.spp > 0 ? s.shown.image : s.snap;
+  const Snapshot& sn = held ? s.held : left ? *left : s.shown.image.spp > 0 ? s.shown.image : s.snap;
   const int x = std::min(sn.width - 1, int(u * sn.width));
   const int y = std::min(sn.height - 1, int((m.y - a.y) / a.h * sn.height));
   const std::vector<std::string> lines = readout_lines(read_pixel(sn, x, y), x, y, held);
@@ -135,7 +135,7 @@ void draw_image_overlays(const ViewerState& s, const ImageArea& area, bool reado
     debug_legend_box(s, area);
     return;  // the readout and the wipe are about the render
   }
-  if (s.compare == kCompareWipe && s.held.spp > 0) wipe_line(s, area);
+  if (wipe_left(s)) wipe_line(s, area);
   if (readout) pixel_readout(s, area, out);
 }
 

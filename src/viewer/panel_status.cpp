@@ -344,14 +344,16 @@ void compare_section(ViewerState& s, PanelRequests& req) {
   } else {
     ImGui::TextDisabled("nothing held");
   }
-  ImGui::BeginDisabled(s.held.spp == 0);
-  static const char* modes[] = {"live only", "held only", "wipe: held left, live right"};
-  ImGui::Combo("show", &s.compare, modes, 3);
-  tip("What the image area shows: the live render, the held image, or both split "
-      "at the wipe line.");
-  ImGui::BeginDisabled(s.compare != kCompareWipe);
+  ImGui::BeginDisabled(s.held.spp == 0 && !s.denoised_view);
+  static const char* modes[] = {"live only", "held only", "wipe: held left, live right",
+                                "wipe: raw left, denoised right"};
+  ImGui::Combo("show", &s.compare, modes, 4);
+  tip("What the image area shows: the live render, the held image, or two images split "
+      "at the wipe line: the held one and the live one, or (with Denoised on) the live "
+      "raw image and its denoised copy.");
+  ImGui::BeginDisabled(s.compare != kCompareWipe && s.compare != kCompareRawDenoised);
   ImGui::SliderFloat("wipe", &s.wipe, 0.0f, 1.0f, "%.2f");
-  tip("Where the held image (left) ends and the live one (right) begins.");
+  tip("Where the left image ends and the right one begins.");
   ImGui::EndDisabled();
   ImGui::EndDisabled();
 }

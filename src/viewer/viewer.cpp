@@ -50,6 +50,7 @@ struct Session {
   Display& display;
   Display& held_display;  // the A/B comparison's held image
   Display& debug_display;  // normals, material colours, depth
+  Display& raw_display;    // the raw image left of a raw | denoised wipe
   ProgressiveRenderer& renderer;
   ViewerState& s;
   float panel_w;  // window units
@@ -62,6 +63,7 @@ struct Session {
   std::uint64_t rse_generation = 0;
   std::uint64_t title_spp = ~0ull;
   std::uint64_t held_uploaded = ~0ull;  // version of the held image on the GPU
+  std::uint64_t shown_count = 0, raw_uploaded = ~0ull;  // s.shown's changes, and the raw one on the GPU
   Scene debug_scene{};                   // what s.debug shows
   // The scene's geometry for the camera's collision rays (its BVH reused
   // while the meshes stay), and the scene it was built from.
@@ -94,6 +96,7 @@ struct Session {
     const bool quick = renderer.quick_snapshot(s.quick);
     if (!own && !quick) return false;
     blend_for_display(s.snap, s.quick, s.applied.settings, s.shown);
+    ++shown_count;
     upload_image();
     if (!own) return true;
     s.nodes = s.snap.bvh_nodes;
@@ -272,6 +275,11 @@ struct Session {
       display.draw(rect, f.fb_h, float(live.spp), s.display);
       if (held && s.compare == kCompareWipe)
         held_display.draw_columns(rect, f.fb_h, float(s.held.spp), s.display, 0.0f, s.wipe);
+      if (s.display.mode == kViewImage && s.compare == kCompareRawDenoised && wipe_left(s)) {
+        if (raw_uploaded != shown_count) raw_display.upload(s.shown.image, false);
+        raw_uploaded = shown_count;
+        raw_display.draw_columns(rect, f.fb_h, float(s.shown.image.spp), s.display, 0.0f, s.wipe);
+      }
     }
     glViewport(0, 0, f.fb_w, f.fb_h);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -383,9 +391,10 @@ int run_viewer(const ViewerOptions& opt) {
     std::fprintf(stderr, "whisker: %s\n", window.error().c_str());
     return 3;
   }
-  Display display, held_display, debug_display;
+  Display display, held_display, debug_display, raw_display;
   std::string error;
-  if (!display.init(error) || !held_display.init(error) || !debug_display.init(error)) {
+  if (!display.init(error) || !held_display.init(error) || !debug_display.init(error) ||
+      !raw_display.init(error)) {
     std::fprintf(stderr, "whisker: %s\n", error.c_str());
     return 1;
   }
@@ -419,7 +428,7 @@ int run_viewer(const ViewerOptions& opt) {
   renderer.start();
   s.last_change = glfwGetTime();
 
-  Session session{opt, window.handle(), display, held_display, debug_display, renderer, s,
+  Session session{opt, window.handle(), display, held_display, debug_display, raw_display, renderer, s,
                   kPanelWidth * imgui.ui_scale()};
   if (!opt.event_log.empty()) {
     if (!session.log.open(opt.event_log)) {

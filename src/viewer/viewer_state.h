@@ -50,7 +50,9 @@ struct PanelRequests {
 
 // The A/B comparison: an image held back, shown instead of or beside the
 // live one.
-enum CompareMode : int { kCompareOff = 0, kCompareHeld = 1, kCompareWipe = 2 };
+// kCompareRawDenoised: with the denoised view, the live raw image left of the
+// wipe line and its denoised copy right of it.
+enum CompareMode : int { kCompareOff = 0, kCompareHeld = 1, kCompareWipe = 2, kCompareRawDenoised = 3 };
 
 struct ViewerState {
   Scene initial;   // as loaded: what "reset camera" returns to
@@ -169,6 +171,14 @@ inline bool showing_denoised(const ViewerState& s) {
   return s.denoised_view && s.display.mode == kViewImage && s.denoised.spp > 0 &&
          s.denoised.generation == s.shown.image.generation && s.denoised.width == s.shown.image.width &&
          s.denoised.height == s.shown.image.height;
+}
+
+// The image left of the wipe line: the held one (kCompareWipe), the raw
+// live one while its denoised copy is shown (kCompareRawDenoised), or none.
+inline const Snapshot* wipe_left(const ViewerState& s) {
+  if (s.compare == kCompareWipe && s.held.spp > 0) return &s.held;
+  if (s.compare == kCompareRawDenoised && showing_denoised(s)) return &s.shown.image;
+  return nullptr;
 }
 
 // With the denoised view on: the newest image of the current generation

@@ -212,3 +212,33 @@ TEST(Compare, HoldKeepsTheImageThroughAnEdit) {
   EXPECT_NE(s.generation, before);
   EXPECT_EQ(s.held.sum, held);
 }
+
+// A/B with the denoised view: "wipe: raw left, denoised right" shows (and
+// saves) the live raw image's columns left of the line and its denoised
+// copy's right of it; without the denoised view there is nothing to wipe.
+TEST(Compare, RawLeftDenoisedRight) {
+  ViewerState s;
+  s.applied = sized("three-balls", 8, 2, 1, 2);
+  Snapshot raw;
+  raw.width = 8;
+  raw.height = 2;
+  raw.spp = 2;
+  raw.generation = 1;
+  raw.sum.assign(8 * 2 * 3, 2.0);  // mean 1
+  raw.sum_sq.assign(8 * 2, 0.0);
+  s.snap = raw;
+  s.shown.image = raw;
+  s.shown.own_spp = 2;
+  s.denoised = raw;
+  s.denoised.sum.assign(8 * 2 * 3, 6.0);  // mean 3
+  s.compare = kCompareRawDenoised;
+  s.wipe = 0.25f;  // two of the eight columns
+  EXPECT_EQ(wipe_left(s), nullptr) << "the denoised view is off";
+  s.denoised_view = true;
+  ASSERT_EQ(wipe_left(s), &s.shown.image);
+  const Snapshot m = shown_means(s);
+  ASSERT_EQ(m.sum.size(), raw.sum.size());
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 8; ++x)
+      EXPECT_FLOAT_EQ(float(m.sum[(std::size_t(y) * 8 + x) * 3]), x < 2 ? 1.0f : 3.0f) << x << "," << y;
+}
