@@ -63,8 +63,9 @@ void wipe_line(const ViewerState& s, const ImageArea& a) {
   const float x = a.x + a.w * s.wipe;
   dl->AddLine(ImVec2(x, a.y), ImVec2(x, a.y + a.h), IM_COL32(255, 255, 255, 220), 2.0f);
   const ImVec2 pad(4.0f, 2.0f);
-  const char* left = "held";
-  const char* right = "live";
+  const bool raw = s.compare == kCompareRawDenoised;
+  const char* left = raw ? "raw" : "held";
+  const char* right = raw ? "denoised" : "live";
   dl->AddRectFilled(ImVec2(x - ImGui::CalcTextSize(left).x - 2 * pad.x - 4, a.y + 4),
                     ImVec2(x - 4, a.y + 4 + ImGui::GetTextLineHeight() + 2 * pad.y),
                     IM_COL32(0, 0, 0, 170));
