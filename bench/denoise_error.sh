@@ -13,16 +13,16 @@
 #
 # PLACES=1: the cat's hard places instead (bench/error_by_region.py
 # --places): the cat and the glass cat (scene glass-cat) at SPP... (default
-# 1 4 16 64), raw and denoised by FILTER (quality), seed 1, each against its
-# own scene's reference (the glass cat's of GLASS_REF_SPP, default REF_SPP): the MSE over the whole image, the silhouette, the
-# whiskers, the contact shadow, the light's hot spot and the cat, then
-# denoised over raw per place, and how much of the whiskers' light the
-# denoised copy keeps; the places are found in a cat render of MASK_SPP
-# (256) with MASK_SEED (9003). With PICTURES=DIR, also crops (CROP "288,150,192,192":
-# x, y, width, height from the top left) of the raw and denoised cat at
-# 4, 16 and 64 spp (those of SPP...), the reference, and |image - reference|
-# x GAIN (4) as PNG, and the places' mask; run on a quiet machine for the
-# figures, PNGs by bench/pfm.py png.
+# 1 4 16 64), raw and denoised by FILTER (quality), seed 1, each against
+# its own scene's reference (the glass cat's of GLASS_REF_SPP, default
+# REF_SPP): the MSE over the whole image, the silhouette, the whiskers, the
+# contact shadow, the light's hot spot and the cat, then denoised over raw
+# per place, and how much of the whiskers' light each image keeps. The
+# places are found in a cat render of MASK_SPP (256) with MASK_SEED (9003).
+# With PICTURES=DIR, also crops (CROP "288,150,192,192": x, y, width,
+# height from the top left) of the raw and denoised cat at 4, 16 and 64 spp
+# (those of SPP...), of the reference, and of |image - reference| x GAIN
+# (4), as PNG (bench/pfm.py png), and the places' mask.
 #
 #   PLACES=1 REF_SEEDS="9001 9002" GLASS_REF_SPP=256 PICTURES=docs/images/denoise \
 #     bench/denoise_error.sh build cat 512
