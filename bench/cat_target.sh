@@ -50,7 +50,7 @@
 # independent, which the estimate needs). The check render stays the raw
 # defaults'.
 #
-#   DENOISE=1 CHECK_SEEDS= bench/cat_target.sh   # ~9 minutes, references apart
+#   DENOISE=1 CHECK_SEEDS="303 404" bench/cat_target.sh   # ~10 minutes, the references apart
 #
 # CONFIGS: estimators separated by ';', each "name|whisker flags|spp counts".
 # The first is the defaults (the scene's settings). The script exits 1 when

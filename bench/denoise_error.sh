@@ -13,15 +13,16 @@
 #
 # PLACES=1: the cat's hard places instead (bench/error_by_region.py
 # --places): the cat and the glass cat (scene glass-cat) at SPP... (default
-# 1 4 16 64), raw and denoised by FILTER (quality), seed 1, each against its
-# own scene's reference (the glass cat's of GLASS_REF_SPP, default REF_SPP): the MSE over the whole image, the silhouette, the
-# whiskers, the contact shadow, the light's hot spot and the cat, then
-# denoised over raw per place, and how much of the whiskers' light the
-# denoised copy keeps. With PICTURES=DIR, also crops (CROP "288,150,192,192":
-# x, y, width, height from the top left) of the raw and denoised cat at
-# 4, 16 and 64 spp (those of SPP...), the reference, and |image - reference|
-# x GAIN (4) as PNG, and the places' mask; run on a quiet machine for the
-# figures, PNGs by bench/pfm.py png.
+# 1 4 16 64), raw and denoised by FILTER (quality), seed 1, each against
+# its own scene's reference (the glass cat's of GLASS_REF_SPP, default
+# REF_SPP): the MSE over the whole image, the silhouette, the whiskers, the
+# contact shadow, the light's hot spot and the cat, then denoised over raw
+# per place, and how much of the whiskers' light each image keeps. The
+# places are found in a cat render of MASK_SPP (256) with MASK_SEED (9003).
+# With PICTURES=DIR, also crops (CROP "288,150,192,192": x, y, width,
+# height from the top left) of the raw and denoised cat at 4, 16 and 64 spp
+# (those of SPP...), of the reference, and of |image - reference| x GAIN
+# (4), as PNG (bench/pfm.py png), and the places' mask.
 #
 #   PLACES=1 REF_SEEDS="9001 9002" GLASS_REF_SPP=256 PICTURES=docs/images/denoise \
 #     bench/denoise_error.sh build cat 512
@@ -52,6 +53,10 @@ reference() {
 if [ "${PLACES:-0}" = 1 ]; then
   [ "$#" -gt 0 ] || counts=(1 4 16 64)
   filter=${FILTER:-quality}
+  # The places are found in a cat render of their own (MASK_SEED, MASK_SPP).
+  mask_ref=$refs/cat-${MASK_SPP:-256}-seed${MASK_SEED:-9003}.pfm
+  [ -f "$mask_ref" ] || { "$bin" --headless --quiet --scene cat --target-spp "${MASK_SPP:-256}" \
+    --seed "${MASK_SEED:-9003}" --out-float "$mask_ref.part.pfm" >/dev/null && mv "$mask_ref.part.pfm" "$mask_ref"; }
   for sc in cat glass-cat; do
     sc_spp=$ref_spp
     [ "$sc" = glass-cat ] && sc_spp=${GLASS_REF_SPP:-$ref_spp}
@@ -70,15 +75,15 @@ if [ "${PLACES:-0}" = 1 ]; then
       imgs+=("$work/$sc-$n-raw.pfm" "$work/$sc-$n-denoised.pfm")
     done
     echo "--- $sc, $filter filter, against 2 x $sc_spp spp (seeds $ref_a, $ref_b): MSE per place (display white)"
-    python3 "$here/error_by_region.py" --places "$refs/cat-$ref_spp-seed$ref_a.pfm" \
+    python3 "$here/error_by_region.py" --places "$mask_ref" \
       "$refs/$sc-$sc_spp-seed$ref_a.pfm" "$refs/$sc-$sc_spp-seed$ref_b.pfm" "${imgs[@]}" \
       --json "$work/$sc.json" ${PICTURES:+--masks "$work/places.png"} | sed "s|$work/||g"
     # Denoised over raw per place, one row per count (the pairs in order).
-    python3 - "$work/$sc.json" "${counts[*]}" <<'PY'
+    python3 - "$work/$sc.json" "${counts[*]}" "$sc" <<'PY'
 import json, sys
 out = json.load(open(sys.argv[1]))
 names = list(out["images"][0]["mse"])
-print(f"| {out['images'][0]['image'].split('/')[-1].split('-')[0]} denoised/raw, spp | " + " | ".join(names) + " | whiskers' red kept, raw / denoised |")
+print(f"| {sys.argv[3]} denoised/raw, spp | " + " | ".join(names) + " | whiskers' red kept, raw / denoised |")
 print("|---|" + "---|" * (len(names) + 1))
 for n, raw, dn in zip(sys.argv[2].split(), out["images"][0::2], out["images"][1::2]):
     if int(n) < 2:
