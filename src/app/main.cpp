@@ -20,6 +20,8 @@
 #endif
 
 #include <fcntl.h>
+#include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 using namespace whisker;
@@ -157,10 +159,20 @@ void ensure_standard_descriptors() {
   }
 }
 
+// Under a limit of address space (ulimit -v) one malloc arena: glibc gives
+// threads arenas of their own, each reserving up to 64 MB of address space
+// (mallopt(3), M_ARENA_MAX), which the limit counts and the render's
+// memory estimate does not.
+void one_arena_under_a_limit() {
+  struct rlimit lim {};
+  if (::getrlimit(RLIMIT_AS, &lim) == 0 && lim.rlim_cur != RLIM_INFINITY) ::mallopt(M_ARENA_MAX, 1);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ensure_standard_descriptors();
+  one_arena_under_a_limit();
   ignore_broken_pipes();
   if (argc > 1 && std::string(argv[1]) == "merge") {
     install_signal_handlers(false);

@@ -253,11 +253,7 @@ TileResult render_tile(const PathContext& ctx, const CameraFrame& cam, const Til
   const bool by_sample = tile.light_caches != nullptr;
   TileResult result;
   const FlushDenormals ftz;
-  // The thread's buffer, kept from tile to tile: a fresh one per tile (a
-  // tile's sums are past malloc's mmap threshold) cost its page faults and
-  // zeroing in every tile, which passes of one sample paid per sample.
-  thread_local std::vector<PixelSum> sums;
-  sums.resize(static_cast<std::size_t>(pixels));
+  std::vector<PixelSum> sums(static_cast<std::size_t>(pixels));
   auto index = [&](std::int64_t p) { return cam.pixel_index(t.i0 + int(p / cols), t.j0 + int(p % cols)); };
   const bool features = tile.features || film.has_features();
   for (std::int64_t p = 0; p < pixels; ++p) start_sum(tile, index(p), features, sums[std::size_t(p)]);
