@@ -154,14 +154,20 @@ def places(ref, w, h):
     return {"silhouette": silhouette, "whiskers": whiskers, "shadow": shadow, "hot spot": hot, "cat": cat}
 
 
+def take_option(args, name):
+    """Removes `name FILE` from args and returns FILE (None if not given)."""
+    if name not in args:
+        return None
+    k = args.index(name)
+    if k + 1 >= len(args):
+        sys.exit(f"error_by_region: {name} needs a file name")
+    value = args[k + 1]
+    del args[k:k + 2]
+    return value
+
+
 def hard_places(args, json_out):
-    masks_png = None
-    if "--masks" in args:
-        k = args.index("--masks")
-        if k + 1 >= len(args):
-            sys.exit("error_by_region: --masks needs a file name")
-        masks_png = args[k + 1]
-        del args[k:k + 2]
+    masks_png = take_option(args, "--masks")
     if len(args) < 4:
         sys.exit(next(u for u in __doc__.split("\n\n") if "--places" in u))
     loaded = [(p, read_scaled(p)) for p in args]
@@ -220,13 +226,7 @@ def hard_places(args, json_out):
 
 def main(argv):
     args = argv[1:]
-    json_out = None
-    if "--json" in args:
-        k = args.index("--json")
-        if k + 1 >= len(args):
-            sys.exit("error_by_region: --json needs a file name")
-        json_out = args[k + 1]
-        del args[k:k + 2]
+    json_out = take_option(args, "--json")
     if args and args[0] == "--places":
         return hard_places(args[1:], json_out)
     if len(args) != 2:
